@@ -1,0 +1,23 @@
+"""Command line: a thin layer; every command is one call into the library."""
+
+from __future__ import annotations
+
+import typer
+
+from arise.llm.cli import app as llm_app
+from arise.validate.cli import check_command, maps_app
+
+app = typer.Typer(
+    name="arise",
+    help="Natural-language traffic scenarios -> executable Scenic 3 scripts, proven to run.",
+    no_args_is_help=True,
+    add_completion=False,
+    pretty_exceptions_enable=False,
+)
+app.command("check")(check_command)
+app.add_typer(maps_app, name="maps")
+app.add_typer(llm_app, name="llm")
+
+
+def main() -> None:
+    app()
