@@ -5,7 +5,7 @@ from __future__ import annotations
 import typer
 
 from arise.llm.cli import app as llm_app
-from arise.validate.cli import check_command, maps_app
+from arise.validate.cli import CHECK_HELP, check_command, maps_app
 
 app = typer.Typer(
     name="arise",
@@ -14,7 +14,7 @@ app = typer.Typer(
     add_completion=False,
     pretty_exceptions_enable=False,
 )
-app.command("check")(check_command)
+app.command("check", help=CHECK_HELP)(check_command)
 app.add_typer(maps_app, name="maps")
 app.add_typer(llm_app, name="llm")
 

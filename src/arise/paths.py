@@ -1,0 +1,15 @@
+"""Where arise keeps files that are not the user's: caches and configuration."""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+import platformdirs
+
+
+def cache_dir() -> Path:
+    """User cache folder (override with ARISE_CACHE_DIR); created on first use."""
+    folder = Path(os.environ.get("ARISE_CACHE_DIR") or platformdirs.user_cache_dir("arise"))
+    folder.mkdir(parents=True, exist_ok=True)
+    return folder

@@ -1,0 +1,177 @@
+"""`arise check` and `arise maps`: thin wrappers that print what the library returns."""
+
+from __future__ import annotations
+
+import json
+import os
+from pathlib import Path
+from typing import Annotated
+
+import typer
+from rich.console import Console
+from rich.panel import Panel
+from rich.table import Table
+
+from arise.maps.registry import MapError, MapRegistry
+from arise.validate.api import check
+from arise.validate.pool import WorkerPool
+from arise.validate.types import CheckOptions, CheckResult
+
+console = Console(stderr=False)
+errors = Console(stderr=True)
+
+STAGE_WORDS = {"gate": "static gate", "parse": "parsing", "compile": "compiling",
+               "sample": "sampling a scene", "simulate": "simulating"}
+
+CHECK_HELP = """Prove that Scenic 3 scripts execute: static gate, compile, sample a scene, simulate.
+
+Scripts written for `model scenic.simulators.carla.model` run unchanged on arise's
+offline CARLA-compatible world model; `--simulator carla` uses a real CARLA server.
+
+Examples:
+
+  arise check examples/pedestrian_crossing.scenic
+
+  arise check my.scenic --png scene.png --steps 200 --seed 7
+
+  arise check out/*.scenic --json > results.json
+
+  arise check my.scenic --map-dir ../shared/maps/CARLA
+"""
+
+
+def _png_target(png: str | None, script: Path, many: bool) -> str | None:
+    if png is None:
+        return None
+    if many:
+        folder = Path(png)
+        folder.mkdir(parents=True, exist_ok=True)
+        return str(folder / f"{script.stem}.png")
+    return png
+
+
+def _print_result(result: CheckResult) -> None:
+    ok = result.ok
+    title = f"[bold]{result.script}[/bold]"
+    console.print(("[green]✔[/green] " if ok else "[red]✘[/red] ") + title + "  " +
+                  result.summary())
+    if result.map is not None:
+        note = f" (substitute for {result.map.requested})" if result.map.substituted and \
+            result.map.requested else ""
+        console.print(f"  map: {result.map.name}{note}")
+    for warning in result.warnings:
+        console.print(f"  [yellow]note:[/yellow] {warning}")
+    if result.diagnostic is not None:
+        d = result.diagnostic
+        body = [f"[bold]{d.error_type}[/bold]: {d.message}"]
+        where = []
+        if d.line:
+            where.append(f"line {d.line}" + (f", column {d.column}" if d.column else ""))
+        if d.section:
+            where.append(f"section {d.section}")
+        if where:
+            body.append("at " + ", ".join(where))
+        if d.excerpt:
+            body.append("\n" + d.excerpt)
+        for rejection in d.rejections[:5]:
+            body.append(f"rejected {rejection.count}x: {rejection.reason}")
+        if d.hint:
+            body.append(f"\n[cyan]hint:[/cyan] {d.hint}")
+        console.print(Panel("\n".join(body), title=f"failed in stage '{d.stage.value}'",
+                            border_style="red", expand=False))
+    if result.simulation is not None and result.simulation.ego_pairs:
+        table = Table(title="ego vs. others", show_edge=False)
+        for column in ("agent", "min distance (m)", "at step", "min TTC (s)", "collision"):
+            table.add_column(column)
+        for pair in result.simulation.ego_pairs:
+            table.add_row(pair.other, f"{pair.min_distance:.2f}", str(pair.min_distance_step),
+                          "-" if pair.min_ttc is None else f"{pair.min_ttc:.2f}",
+                          "yes" if pair.collided else "no")
+        console.print(table)
+    if result.timings:
+        console.print("  timings: " + ", ".join(f"{k} {v:.2f}s" for k, v in result.timings.items()))
+    if result.png:
+        console.print(f"  picture: {result.png}")
+
+
+def check_command(
+    scripts: Annotated[list[Path], typer.Argument(help="Scenic files to check.")],
+    simulator: Annotated[str, typer.Option(help="offline (default) or carla.")] = "offline",
+    map_dir: Annotated[str | None, typer.Option(
+        help="Folder of extra .xodr maps, e.g. CARLA towns (env ARISE_MAP_DIR).")] = None,
+    steps: Annotated[int, typer.Option(help="Simulation steps to run.")] = 300,
+    spawn_attempts: Annotated[int, typer.Option(
+        help="Scenes to try when a spawn fails or a simulation is rejected.")] = 15,
+    sample_iterations: Annotated[int, typer.Option(
+        help="Rejection-sampling iterations per scene.")] = 500,
+    seed: Annotated[int | None, typer.Option(help="Random seed, for a repeatable run.")] = None,
+    timeout: Annotated[float, typer.Option(help="Wall-clock limit per script, seconds.")] = 60,
+    memory_mb: Annotated[int, typer.Option(help="Memory limit per check, MB.")] = 1536,
+    as_json: Annotated[bool, typer.Option("--json", help="Print results as JSON.")] = False,
+    png: Annotated[str | None, typer.Option(
+        help="Write a picture of the scene and trajectories (a folder if several scripts).")]
+    = None,
+    carla_host: Annotated[str, typer.Option(help="CARLA server host.")] = "127.0.0.1",
+    carla_port: Annotated[int, typer.Option(help="CARLA server port.")] = 2000,
+    workers: Annotated[int, typer.Option(help="Parallel worker processes.")] = 1,
+) -> None:
+    if simulator not in ("offline", "carla"):
+        errors.print(f"[red]error:[/red] --simulator must be 'offline' or 'carla', not {simulator!r}")
+        raise typer.Exit(2)
+    try:
+        registry = MapRegistry(map_dir)
+    except MapError as error:
+        errors.print(f"[red]error:[/red] {error}")
+        raise typer.Exit(2) from None
+    options = CheckOptions(simulator=simulator, map_dir=map_dir, steps=steps,
+                           spawn_attempts=spawn_attempts, sample_iterations=sample_iterations,
+                           seed=seed, timeout=timeout, memory_mb=memory_mb,
+                           carla_host=carla_host, carla_port=carla_port)
+    many = len(scripts) > 1
+    results: list[CheckResult] = []
+    with WorkerPool(size=min(workers, len(scripts)), memory_mb=memory_mb) as pool:
+        for script in scripts:
+            per_script = options.model_copy(update={"png": _png_target(png, script, many)})
+            if as_json or not console.is_terminal:
+                result = check(script, per_script, pool=pool, registry=registry)
+            else:
+                with console.status(f"{script}: starting") as status:
+                    def show(stage: str, status=status, script=script) -> None:
+                        status.update(f"{script}: {STAGE_WORDS.get(stage, stage)}…")
+
+                    result = check(script, per_script, pool=pool, registry=registry,
+                                   on_stage=show)
+            results.append(result)
+            if not as_json:
+                _print_result(result)
+    if as_json:
+        payload = [r.model_dump(mode="json") for r in results]
+        print(json.dumps(payload if many else payload[0], indent=2))
+    elif many:
+        passed = sum(r.ok for r in results)
+        console.print(f"\n{passed} of {len(results)} scripts executed")
+    raise typer.Exit(0 if all(r.ok for r in results) else 1)
+
+
+maps_app = typer.Typer(help="Maps: what is available and what each one offers.",
+                       no_args_is_help=True)
+
+
+@maps_app.command("list")
+def maps_list(
+    map_dir: Annotated[str | None, typer.Option(help="Folder of extra .xodr maps.")] = None,
+) -> None:
+    """List the maps a script can run on, with their features."""
+    try:
+        registry = MapRegistry(map_dir)
+    except MapError as error:
+        errors.print(f"[red]error:[/red] {error}")
+        raise typer.Exit(2) from None
+    table = Table(title="maps")
+    for column in ("name", "source", "features", "file"):
+        table.add_column(column)
+    for name in registry.names():
+        entry = registry.entries[name]
+        table.add_row(name, entry.source, ", ".join(sorted(entry.features)) or "?",
+                      os.path.relpath(entry.path) if entry.path else "-")
+    console.print(table)

@@ -1,0 +1,175 @@
+"""Turn whatever went wrong in a check into a Diagnostic: stage, type, line, section, hint.
+
+Scenic reports most semantic errors as plain Python exceptions whose script line is only
+in the traceback, some errors at line 1 (the map, the model, the ego), and unsatisfiable
+requirements without any line. This module recovers the real place and cause.
+"""
+
+from __future__ import annotations
+
+import difflib
+import re
+import traceback
+from collections import Counter
+from collections.abc import Iterable
+from pathlib import Path
+from types import TracebackType
+
+from arise.validate.script_info import ScriptInfo
+from arise.validate.sections import excerpt, section_of_line
+from arise.validate.types import Diagnostic, Rejection, Stage
+
+_REQUIREMENT_LINE = re.compile(r"requirement on line (\d+)")
+_NAME_ERROR = re.compile(r"name '(\w+)' is not defined")
+_BLUEPRINT = re.compile(r"""blueprint ['"]?([\w.\-]+)['"]?""")
+
+
+def locate(text: str, line: int | None, column: int | None = None) -> dict[str, object]:
+    """The section and excerpt fields for a line of the script."""
+    return {
+        "line": line,
+        "column": column,
+        "section": section_of_line(text, line),
+        "excerpt": excerpt(text, line, column=column),
+    }
+
+
+def _script_frame(tb: TracebackType | None, script_path: str) -> tuple[int | None, int | None]:
+    """Line and column of the deepest traceback frame that is in the script itself."""
+    line: int | None = None
+    column: int | None = None
+    target = str(Path(script_path).resolve())
+    for frame in traceback.extract_tb(tb):
+        try:
+            same = str(Path(frame.filename).resolve()) == target
+        except (OSError, ValueError):
+            same = False
+        if same:
+            line = frame.lineno
+            colno = getattr(frame, "colno", None)
+            column = colno + 1 if colno is not None else None
+    return line, column
+
+
+def _deepest_frame_file(tb: TracebackType | None) -> str:
+    frames = traceback.extract_tb(tb)
+    return frames[-1].filename if frames else ""
+
+
+def hint_for(error_type: str, message: str, vocabulary: Iterable[str] = ()) -> str | None:
+    """A short, concrete suggestion for errors we recognise."""
+    if "forgot 'new'" in message or "forgot \"new\"" in message:
+        return ("Scenic 3 creates objects with `new`: write `x = new Car ...`, "
+                "not `x = Car ...` (Scenic 2 syntax).")
+    name = _NAME_ERROR.search(message)
+    if name:
+        close = difflib.get_close_matches(name.group(1), list(vocabulary), n=3, cutoff=0.75)
+        if close:
+            return f"'{name.group(1)}' is not defined; did you mean {', '.join(close)}?"
+        return (f"'{name.group(1)}' is not defined: declare it (e.g. "
+                f"`param {name.group(1)} = ...` and read it via globalParameters) or use a "
+                "name the CARLA model provides.")
+    if "blueprint" in message.lower():
+        from scenic.simulators.carla.blueprints import _IDS  # the installed CARLA table
+
+        wanted = _BLUEPRINT.search(message)
+        known = sorted({b for ids in _IDS.values() for b in ids})
+        if wanted:
+            close = difflib.get_close_matches(wanted.group(1), known, n=3, cutoff=0.6)
+            if close:
+                return f"unknown CARLA blueprint; close valid ones: {', '.join(close)}"
+        return "unknown CARLA blueprint; see `arise check --help` for the blueprint table."
+    if error_type == "SpecifierError":
+        return ("two specifiers conflict or one needs a property no other specifier gives; "
+                "give each property (position, heading, ...) once.")
+    if error_type in ("IndentationError", "TabError"):
+        return "fix the indentation of this block (4 spaces per level, no tabs)."
+    if error_type == "MemoryError":
+        return "the script allocates more memory than the check allows."
+    if error_type == "StuckBehaviorWarning":
+        return "a behavior loops without `take` or `wait`; add `wait` inside the loop."
+    if error_type == "WeatherError":
+        return "use a CARLA weather preset name (e.g. 'ClearNoon') or a dict of its parameters."
+    return None
+
+
+def from_exception(
+    exc: BaseException,
+    stage: Stage,
+    text: str,
+    script_path: str,
+    info: ScriptInfo,
+    vocabulary: Iterable[str] = (),
+) -> Diagnostic:
+    """Diagnostic for an exception raised while compiling, sampling or simulating."""
+    error_type = type(exc).__name__
+    message = str(exc) or error_type
+    line: int | None
+    column: int | None
+    if hasattr(exc, "lineno") and isinstance(getattr(exc, "lineno", None), int) and (
+        getattr(exc, "filename", None) in (None, script_path, "<string>")
+        or str(getattr(exc, "filename", "")).endswith(Path(script_path).name)
+    ):
+        line = exc.lineno  # type: ignore[attr-defined]
+        offset = getattr(exc, "offset", None)
+        column = offset if isinstance(offset, int) else None
+        message = getattr(exc, "msg", None) or message
+    else:
+        line, column = _script_frame(exc.__traceback__, script_path)
+
+    deepest = _deepest_frame_file(exc.__traceback__)
+    hint: str | None = None
+    # Scenic blames line 1 for the map, the model and the ego line; find the real cause.
+    if line in (None, 1):
+        if isinstance(exc, FileNotFoundError) or ("roads.py" in deepest and ".xodr" in message):
+            line, column = info.map_line, None
+            hint = "the map file could not be read; name a known town or pass --map-dir."
+        elif isinstance(exc, ModuleNotFoundError) and info.model_line:
+            line, column = info.model_line, None
+            hint = (f"world model '{info.model}' cannot be imported; use "
+                    "`model scenic.simulators.carla.model`.")
+        elif "ego" in message.lower() and info.ego_line:
+            line, column = info.ego_line, None
+    if line is None and stage is Stage.COMPILE and "model" in message.lower() and info.model_line:
+        line = info.model_line
+    return Diagnostic(
+        stage=stage,
+        error_type=error_type,
+        message=message.strip().splitlines()[0] if message.strip() else error_type,
+        hint=hint or hint_for(error_type, message, vocabulary),
+        **locate(text, line, column),  # type: ignore[arg-type]
+    )
+
+
+def rejections_from_log(log: str, text: str) -> list[Rejection]:
+    """Count the reasons Scenic printed for rejected samples (verbosity 2)."""
+    reasons: Counter[str] = Counter()
+    for match in re.finditer(r"Rejected (?:sample|simulation) [\w.]+ (?:at time step \d+ )?"
+                             r"because(?: of)?:? (.+)", log):
+        reasons[match.group(1).strip()] += 1
+    lines = text.splitlines()
+    found = []
+    for reason, count in reasons.most_common():
+        line_match = _REQUIREMENT_LINE.search(reason)
+        line = int(line_match.group(1)) if line_match else None
+        code = lines[line - 1].strip() if line and 0 < line <= len(lines) else None
+        found.append(Rejection(reason=reason, count=count, line=line,
+                               section=section_of_line(text, line), code=code))
+    return found
+
+
+def rejection_diagnostic(stage: Stage, message: str, rejections: list[Rejection],
+                         text: str, attempts: int) -> Diagnostic:
+    """Name the requirement(s) that threw away the samples or simulations."""
+    top = rejections[0] if rejections else None
+    if top is not None and top.line is not None:
+        hint = (f"the requirement on line {top.line} rejected {top.count} of {attempts} "
+                f"tries: `{top.code}`; loosen it or change the placement it constrains.")
+    elif top is not None:
+        hint = (f"most tries were rejected because {top.reason} ({top.count} of {attempts}); "
+                "check the placement of the objects involved (overlap, off-road, not in a lane).")
+    else:
+        hint = "no sample satisfied the requirements; loosen them."
+    fields = locate(text, top.line if top else None)
+    return Diagnostic(stage=stage, error_type="RejectionException", message=message,
+                      hint=hint, rejections=rejections, **fields)  # type: ignore[arg-type]

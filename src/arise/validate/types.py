@@ -1,0 +1,145 @@
+"""Plain data passed across the validator's boundaries (worker <-> caller <-> CLI).
+
+Everything here is JSON-serialisable with `model_dump()`, so a result can be written to a
+report, sent over a pipe or compared in a test.
+"""
+
+from __future__ import annotations
+
+from enum import StrEnum
+
+from pydantic import BaseModel, Field
+
+
+class Stage(StrEnum):
+    """Where a check stopped. Ordered as the checks run."""
+
+    GATE = "gate"
+    PARSE = "parse"
+    COMPILE = "compile"
+    SAMPLE = "sample"
+    SIMULATE = "simulate"
+
+
+class Rejection(BaseModel):
+    """One reason Scenic threw away samples, with how often and where."""
+
+    reason: str
+    count: int
+    line: int | None = None
+    section: str | None = None
+    code: str | None = None
+
+
+class Diagnostic(BaseModel):
+    """Why a script did not execute, precise enough to repair it."""
+
+    stage: Stage
+    error_type: str
+    message: str
+    line: int | None = None
+    column: int | None = None
+    section: str | None = None
+    excerpt: str | None = None
+    hint: str | None = None
+    rejections: list[Rejection] = Field(default_factory=list)
+
+    def one_line(self) -> str:
+        where = f" line {self.line}" if self.line else ""
+        section = f" [{self.section}]" if self.section else ""
+        return f"{self.stage.value}{where}{section}: {self.error_type}: {self.message}"
+
+
+class MapChoice(BaseModel):
+    """Which map file a script ran on, and whether it was a substitute."""
+
+    requested: str | None
+    name: str
+    path: str
+    substituted: bool = False
+    reason: str | None = None
+
+
+class TracePoint(BaseModel):
+    step: int
+    x: float
+    y: float
+    heading: float
+    speed: float
+
+
+class AgentTrace(BaseModel):
+    name: str
+    kind: str
+    blueprint: str | None = None
+    width: float
+    length: float
+    is_ego: bool = False
+    trajectory: list[TracePoint] = Field(default_factory=list)
+
+
+class Collision(BaseModel):
+    first: str
+    second: str
+    step: int
+    time: float
+
+
+class EgoPairFacts(BaseModel):
+    """How close another agent came to the ego: the criticality numbers."""
+
+    other: str
+    min_distance: float
+    min_distance_step: int
+    min_ttc: float | None = None
+    collided: bool = False
+
+
+class SimulationFacts(BaseModel):
+    steps: int
+    timestep: float
+    termination_type: str
+    termination_reason: str
+    agents: list[AgentTrace]
+    collisions: list[Collision] = Field(default_factory=list)
+    ego_pairs: list[EgoPairFacts] = Field(default_factory=list)
+    events: list[dict[str, object]] = Field(default_factory=list)
+
+
+class CheckOptions(BaseModel):
+    """What to check and how hard; the defaults suit a laptop, offline."""
+
+    simulator: str = "offline"
+    map_dir: str | None = None
+    steps: int = 300
+    spawn_attempts: int = 15
+    sample_iterations: int = 500
+    seed: int | None = None
+    timeout: float = 60.0
+    memory_mb: int = 1536
+    png: str | None = None
+    carla_host: str = "127.0.0.1"
+    carla_port: int = 2000
+    carla_timeout: float = 5.0
+
+
+class CheckResult(BaseModel):
+    ok: bool
+    script: str
+    diagnostic: Diagnostic | None = None
+    map: MapChoice | None = None
+    model: str | None = None
+    warnings: list[str] = Field(default_factory=list)
+    timings: dict[str, float] = Field(default_factory=dict)
+    spawn_attempts_used: int = 0
+    sample_iterations_used: int = 0
+    simulation: SimulationFacts | None = None
+    png: str | None = None
+
+    def summary(self) -> str:
+        if self.ok and self.simulation is not None:
+            sim = self.simulation
+            return (f"OK: {sim.steps} steps, {len(sim.agents)} agents, "
+                    f"ended by {sim.termination_type} ({sim.termination_reason})")
+        assert self.diagnostic is not None
+        return f"FAILED at {self.diagnostic.one_line()}"

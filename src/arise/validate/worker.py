@@ -1,0 +1,468 @@
+"""The child process that runs checks: gate, parse, compile, sample, simulate.
+
+It is started by `arise.validate.pool` with an address-space limit, talks JSON lines on a
+private pipe (Scenic's own prints go to /dev/null), reports each stage as it enters it so
+the parent can name the stage of a timeout, and stays warm between checks.
+"""
+
+from __future__ import annotations
+
+import io
+import json
+import os
+import random
+import re
+import resource
+import sys
+import threading
+import time
+import warnings
+import _thread
+from contextlib import redirect_stdout
+from pathlib import Path
+from typing import Any, Callable
+
+from arise.validate.diagnostics import (
+    from_exception,
+    locate,
+    rejection_diagnostic,
+    rejections_from_log,
+)
+from arise.validate.gate import Refusal, scan_tokens, scan_tree
+from arise.validate.script_info import CARLA_MODEL, KNOWN_MODELS, ScriptInfo, read_script_info
+from arise.validate.types import (
+    AgentTrace,
+    CheckOptions,
+    CheckResult,
+    Diagnostic,
+    MapChoice,
+
+    SimulationFacts,
+    Stage,
+    TracePoint,
+)
+
+Emit = Callable[[dict[str, Any]], None]
+OFFLINE_MODEL = "arise.validate.worldmodel.model"
+SOFT_TIMEOUT_GRACE = 2.0  # seconds between our own interrupt and the parent's kill
+
+
+class CheckTimeout(Exception):
+    """The check ran past its time limit; raised inside the script's code to get its line."""
+
+
+class _Failed(Exception):
+    def __init__(self, diagnostic: Diagnostic):
+        super().__init__(diagnostic.message)
+        self.diagnostic = diagnostic
+
+
+# --- once per worker --------------------------------------------------------------------
+_NETWORK_CACHE: dict[tuple[Any, ...], Any] = {}
+_VOCABULARY: list[str] = []
+
+
+def _warm_up() -> None:
+    """Import Scenic once and memoise parsed maps, so each check pays only for itself."""
+    import scenic  # noqa: F401
+    import scenic.core.simulators as simulators
+    from scenic.core.dynamics import StuckBehaviorWarning
+    from scenic.domains.driving.roads import Network
+
+    original = Network.fromFile.__func__  # type: ignore[attr-defined]
+
+    def cached_from_file(cls: Any, path: Any, useCache: bool = True,
+                         writeCache: bool = True, **kwargs: Any) -> Any:
+        resolved = os.path.realpath(str(path))
+        try:
+            stamp = os.stat(resolved).st_mtime_ns
+        except OSError:
+            stamp = None
+        key = (resolved, stamp, repr(sorted(kwargs.items())))
+        if key not in _NETWORK_CACHE:
+            _NETWORK_CACHE[key] = original(cls, path, useCache=useCache,
+                                           writeCache=writeCache, **kwargs)
+        return _NETWORK_CACHE[key]
+
+    Network.fromFile = classmethod(cached_from_file)  # type: ignore[method-assign, assignment]
+
+    def trace_state(self: Any) -> tuple[tuple[float, float, float, float], ...]:
+        return tuple(
+            (float(o.position.x), float(o.position.y), float(o.heading), float(o.speed or 0.0))
+            for o in self.objects
+        )
+
+    simulators.Simulation.currentState = trace_state  # type: ignore[method-assign]
+    _memoise_library_parsing()
+    warnings.simplefilter("error", StuckBehaviorWarning)
+    _VOCABULARY.extend(_build_vocabulary())
+
+
+def _memoise_library_parsing() -> None:
+    """Parse and translate Scenic's and our world-model modules once per worker.
+
+    Parsing the world model's Scenic source dominates compile time, and the translated
+    Python tree does not depend on params, so the first translation serves every later
+    compile (the module is still executed each time). User scripts are parsed afresh.
+    """
+    import scenic.syntax.translator as translator
+
+    import arise
+
+    parse = translator.parse_string
+    translate = translator.compileScenicAST
+    library_roots = (str(Path(translator.__file__).parents[1]), str(Path(arise.__file__).parent))
+    translated: dict[tuple[str, str], Any] = {}
+
+    class _Known:
+        def __init__(self, key: tuple[str, str]):
+            self.key = key
+
+    def parse_string(source: str, mode: str, *args: Any, filename: str = "<unknown>",
+                     **kwargs: Any) -> Any:
+        if str(filename).startswith(library_roots) and mode == "exec":
+            key = (str(filename), source)
+            if key in translated:
+                return _Known(key)
+            tree = parse(source, mode, *args, filename=filename, **kwargs)
+            translated[key] = translate(tree, filename=filename)
+            return _Known(key)
+        return parse(source, mode, *args, filename=filename, **kwargs)
+
+    def compile_scenic_ast(tree: Any, *args: Any, **kwargs: Any) -> Any:
+        if isinstance(tree, _Known):
+            return translated[tree.key]
+        return translate(tree, *args, **kwargs)
+
+    translator.parse_string = parse_string
+    translator.compileScenicAST = compile_scenic_ast
+
+
+def _build_vocabulary() -> list[str]:
+    """Names a script may use, for 'did you mean' hints on NameErrors."""
+    import scenic.domains.driving as driving
+    import scenic.syntax.veneer as veneer
+
+    import arise.validate.worldmodel as worldmodel
+
+    names: set[str] = set(getattr(veneer, "__all__", ()))
+    pattern = re.compile(r"^\s*(?:class|behavior|def|monitor|scenario)\s+(\w+)", re.M)
+    assignment = re.compile(r"^(\w+)\s*(?::[^=]*)?=", re.M)
+    for folder in (Path(worldmodel.__file__).parent, Path(driving.__file__).parent):
+        for source in folder.glob("*.scenic"):
+            text = source.read_text(encoding="utf-8")
+            names.update(pattern.findall(text))
+            names.update(assignment.findall(text))
+        for source in folder.glob("*.py"):
+            names.update(pattern.findall(source.read_text(encoding="utf-8")))
+    return sorted(n for n in names if not n.startswith("_"))
+
+
+# --- one check ---------------------------------------------------------------------------
+class _Watchdog:
+    """Interrupts the main thread shortly before the parent would kill us."""
+
+    def __init__(self, seconds: float):
+        self.fired = False
+        self._timer = threading.Timer(max(0.5, seconds), self._fire)
+        self._timer.daemon = True
+
+    def _fire(self) -> None:
+        self.fired = True
+        _thread.interrupt_main()
+
+    def __enter__(self) -> _Watchdog:
+        self._timer.start()
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self._timer.cancel()
+
+
+def _gate_and_parse(text: str, path: str) -> None:
+    from scenic.core.errors import ScenicSyntaxError
+    from scenic.syntax.compiler import compileScenicAST
+    from scenic.syntax.parser import parse_string
+
+    try:
+        tree = parse_string(text, "exec", filename=path)
+    except (ScenicSyntaxError, SyntaxError) as error:
+        refusals = scan_tokens(text)
+        if refusals:
+            raise _Failed(_refusal(refusals, text)) from error
+        raise
+    refusals = scan_tree(tree)
+    if refusals:
+        raise _Failed(_refusal(refusals, text))
+    compileScenicAST(tree, filename=path)
+
+
+def _refusal(refusals: list[Refusal], text: str) -> Diagnostic:
+    first = refusals[0]
+    others = "; ".join(str(r) for r in refusals[1:4])
+    message = first.what + (f" (also {others})" if others else "")
+    return Diagnostic(stage=Stage.GATE, error_type="ForbiddenConstruct", message=message,
+                      hint="scripts may not touch files, processes, the network or the "
+                           "interpreter; remove the construct.",
+                      **locate(text, first.line, first.column))  # type: ignore[arg-type]
+
+
+def _model_problem(info: ScriptInfo, text: str, options: CheckOptions) -> tuple[str | None, list[str]]:
+    """Which model to compile with, and warnings about the script's own model line."""
+    notes: list[str] = []
+    if options.simulator == "carla":
+        return None, notes
+    if info.model is None:
+        notes.append("the script has no `model` line; it was checked with the CARLA model "
+                     "(add `model scenic.simulators.carla.model`)")
+    elif info.model not in KNOWN_MODELS:
+        import importlib.util
+
+        try:
+            found = importlib.util.find_spec(info.model) is not None
+        except (ImportError, ValueError):
+            found = False
+        if not found:
+            raise _Failed(Diagnostic(
+                stage=Stage.COMPILE, error_type="ModuleNotFoundError",
+                message=f"world model '{info.model}' does not exist",
+                hint=f"use `model {CARLA_MODEL}`",
+                **locate(text, info.model_line)))  # type: ignore[arg-type]
+        notes.append(f"the script's model is '{info.model}'; it was checked with arise's "
+                     "offline CARLA model")
+    elif info.model != CARLA_MODEL:
+        notes.append(f"the script uses the {KNOWN_MODELS[info.model]} model "
+                     f"('{info.model}'); it was checked with arise's offline CARLA model")
+    return OFFLINE_MODEL, notes
+
+
+def _agent_traces(simulation: Any) -> list[AgentTrace]:
+    trajectory = simulation.result.trajectory
+    counts: dict[str, int] = {}
+    traces = []
+    ego = simulation.scene.egoObject
+    for index, obj in enumerate(simulation.objects):
+        kind = type(obj).__name__
+        counts[kind] = counts.get(kind, 0) + 1
+        is_ego = obj is ego or getattr(obj, "_obj", None) is ego
+        name = "ego" if is_ego else f"{kind}{counts[kind]}"
+        points = [
+            TracePoint(step=step, x=round(state[index][0], 3), y=round(state[index][1], 3),
+                       heading=round(state[index][2], 4), speed=round(state[index][3], 3))
+            for step, state in enumerate(trajectory)
+            if index < len(state) and isinstance(state[index], tuple)
+        ]
+        blueprint = getattr(obj, "blueprint", None)
+        traces.append(AgentTrace(
+            name=name, kind=kind, blueprint=blueprint if isinstance(blueprint, str) else None,
+            width=float(obj.width), length=float(obj.length), is_ego=is_ego,
+            trajectory=points))
+    return traces
+
+
+def _simulation_facts(simulation: Any) -> SimulationFacts:
+    from arise.validate.facts import ego_pair_facts, find_collisions
+
+    agents = _agent_traces(simulation)
+    events = [dict(e) for e in getattr(simulation, "arise_events", [])]
+    result = simulation.result
+    return SimulationFacts(
+        steps=max(0, len(result.trajectory) - 1),
+        timestep=float(simulation.timestep),
+        termination_type=str(result.terminationType.name),
+        termination_reason=str(result.terminationReason),
+        agents=agents,
+        collisions=find_collisions(agents, float(simulation.timestep)),
+        ego_pairs=ego_pair_facts(agents),
+        events=events,
+    )
+
+
+def run_check(request: dict[str, Any], emit: Emit) -> CheckResult:
+    """One check, from file to facts. Errors come back as a Diagnostic, never raised."""
+    options = CheckOptions.model_validate(request["options"])
+    path = request["script"]
+    map_choice = MapChoice.model_validate(request["map"]) if request.get("map") else None
+    text = Path(path).read_text(encoding="utf-8")
+    info = read_script_info(text)
+    result = CheckResult(ok=False, script=path, map=map_choice, model=info.model)
+    timings = result.timings
+    stage = Stage.GATE
+
+    def enter(next_stage: Stage) -> float:
+        nonlocal stage
+        stage = next_stage
+        emit({"event": "stage", "stage": next_stage.value})
+        return time.perf_counter()
+
+    seed = options.seed if options.seed is not None else random.randrange(2**31)
+    random.seed(seed)
+    import numpy
+
+    numpy.random.seed(seed % 2**32)
+    try:
+        with _Watchdog(options.timeout - SOFT_TIMEOUT_GRACE) as watchdog:
+            try:
+                _run_stages(path, text, info, options, map_choice, result, enter, timings)
+            except KeyboardInterrupt as interrupt:
+                if not watchdog.fired:
+                    raise
+                timeout = CheckTimeout(f"the check ran longer than {options.timeout:g} s "
+                                       f"(in the {stage.value} stage)")
+                timeout.__traceback__ = interrupt.__traceback__
+                diagnostic = from_exception(timeout, stage, text, path, info, _VOCABULARY)
+                diagnostic.hint = ("an endless loop or a very slow computation; make loops "
+                                   "`wait` or `take` an action each step, or raise --timeout.")
+                raise _Failed(diagnostic) from None
+    except _Failed as failure:
+        result.diagnostic = failure.diagnostic
+    except MemoryError as error:
+        result.diagnostic = from_exception(error, stage, text, path, info, _VOCABULARY)
+        result.diagnostic.message = (f"the script exceeded the memory limit of "
+                                     f"{options.memory_mb} MB")
+    except Exception as error:  # noqa: BLE001  (any script failure becomes a Diagnostic)
+        stage_of_error = Stage.PARSE if _is_syntax_error(error) else stage
+        result.diagnostic = from_exception(error, stage_of_error, text, path, info, _VOCABULARY)
+    result.ok = result.diagnostic is None and result.simulation is not None
+    return result
+
+
+def _is_syntax_error(error: BaseException) -> bool:
+    from scenic.core.errors import ScenicSyntaxError
+
+    return isinstance(error, (ScenicSyntaxError, SyntaxError))
+
+
+def _run_stages(path: str, text: str, info: ScriptInfo, options: CheckOptions,
+                map_choice: MapChoice | None, result: CheckResult,
+                enter: Callable[[Stage], float], timings: dict[str, float]) -> None:
+    import scenic
+    from scenic.core.distributions import RejectionException
+    from scenic.core.simulators import SimulationCreationError
+
+    started = enter(Stage.GATE)
+    model, notes = _model_problem(info, text, options)
+    result.warnings.extend(notes)
+    if map_choice is not None and map_choice.substituted and map_choice.reason:
+        result.warnings.append(map_choice.reason)
+    _gate_and_parse(text, path)
+    timings["gate+parse"] = round(time.perf_counter() - started, 3)
+
+    started = enter(Stage.COMPILE)
+    params: dict[str, Any] = {}
+    if map_choice is not None:
+        params["map"] = map_choice.path
+        params["carla_map"] = map_choice.name
+    if options.simulator == "carla":
+        params.update(address=options.carla_host, port=options.carla_port,
+                      timeout=int(max(1, options.carla_timeout)))
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        from scenic.core.dynamics import StuckBehaviorWarning
+
+        warnings.simplefilter("error", StuckBehaviorWarning)
+        scenario = scenic.scenarioFromFile(path, params=params, model=model, mode2D=True)
+    result.warnings.extend(_useful_warnings(caught))
+    timings["compile"] = round(time.perf_counter() - started, 3)
+
+    rejected_sims: list[str] = []
+    simulator = None
+    for attempt in range(1, options.spawn_attempts + 1):
+        result.spawn_attempts_used = attempt
+        started = enter(Stage.SAMPLE)
+        log = io.StringIO()
+        try:
+            with redirect_stdout(log):
+                scene, iterations = scenario.generate(
+                    maxIterations=options.sample_iterations, verbosity=2)
+        except RejectionException as error:
+            rejections = rejections_from_log(log.getvalue(), text)
+            result.sample_iterations_used += options.sample_iterations
+            raise _Failed(rejection_diagnostic(
+                Stage.SAMPLE, f"no scene satisfied the requirements in "
+                f"{options.sample_iterations} samples ({error})", rejections, text,
+                options.sample_iterations)) from None
+        result.sample_iterations_used += iterations
+        timings["sample"] = round(timings.get("sample", 0) + time.perf_counter() - started, 3)
+
+        started = enter(Stage.SIMULATE)
+        if simulator is None:
+            simulator = scenario.getSimulator()
+        log = io.StringIO()
+        try:
+            with redirect_stdout(log):
+                simulation = simulator.simulate(scene, maxSteps=options.steps, verbosity=2)
+        except SimulationCreationError as error:
+            rejected_sims.append(f"Rejected simulation {attempt} because: spawn failed: {error}")
+            continue
+        finally:
+            timings["simulate"] = round(
+                timings.get("simulate", 0) + time.perf_counter() - started, 3)
+        if simulation is None:
+            rejected_sims.extend(line for line in log.getvalue().splitlines()
+                                 if "Rejected simulation" in line)
+            continue
+        result.simulation = _simulation_facts(simulation)
+        if options.png:
+            started = time.perf_counter()
+            from arise.validate.render import draw_scene
+
+            title = f"{Path(path).name} on {map_choice.name if map_choice else '?'}"
+            result.png = draw_scene(getattr(scene.workspace, "network", None),
+                                    result.simulation.agents, options.png, title)
+            timings["png"] = round(time.perf_counter() - started, 3)
+        simulator.destroy()
+        return
+    if simulator is not None:
+        simulator.destroy()
+    rejections = rejections_from_log("\n".join(rejected_sims), text)
+    raise _Failed(rejection_diagnostic(
+        Stage.SIMULATE,
+        f"every one of {options.spawn_attempts} simulations was rejected",
+        rejections, text, options.spawn_attempts))
+
+
+def _useful_warnings(caught: list[warnings.WarningMessage]) -> list[str]:
+    seen = []
+    for warning in caught:
+        message = str(warning.message)
+        if "carla" in message and "package is not installed" in message:
+            continue
+        if message not in seen:
+            seen.append(message)
+    return seen[:10]
+
+
+
+
+# --- process entry point -------------------------------------------------------------------
+def main() -> None:
+    protocol = os.fdopen(os.dup(1), "w", buffering=1, encoding="utf-8")
+    sink = os.open(os.devnull, os.O_WRONLY)
+    os.dup2(sink, 1)
+    if os.environ.get("ARISE_WORKER_STDERR") != "1":
+        os.dup2(sink, 2)
+
+    def emit(message: dict[str, Any]) -> None:
+        protocol.write(json.dumps(message) + "\n")
+        protocol.flush()
+
+    _warm_up()
+    limit_mb = int(os.environ.get("ARISE_WORKER_MEMORY_MB", "0"))
+    if limit_mb > 0:
+        import psutil
+
+        baseline = psutil.Process().memory_info().vms
+        ceiling = baseline + limit_mb * 1024 * 1024
+        resource.setrlimit(resource.RLIMIT_AS, (ceiling, ceiling))
+    emit({"event": "ready", "pid": os.getpid()})
+    for line in sys.stdin:
+        if not line.strip():
+            continue
+        request = json.loads(line)
+        result = run_check(request, emit)
+        emit({"event": "result", "result": result.model_dump(mode="json")})
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,251 @@
+"""A small kinematic simulator that stands in for CARLA when no server is available.
+
+Scenic's Newtonian simulator moves only cars and renders by default; CARLA scripts also
+drive trucks, bicycles and motorcycles, walk pedestrians, switch on autopilot and set
+traffic lights. This simulator does all of that with simple physics, never renders, and
+records what it could not act out.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+from scenic.core.vectors import Vector
+from scenic.domains.driving.controllers import (
+    PIDLateralController,
+    PIDLongitudinalController,
+)
+from scenic.domains.driving.simulators import DrivingSimulation, DrivingSimulator
+
+from arise.validate.worldmodel.weather import check_weather
+
+MAX_ACCELERATION = 5.6  # m/s^2
+MAX_BRAKING = 6.8  # m/s^2
+DEFAULT_TIMESTEP = 0.1
+AUTOPILOT_LOOKAHEAD_MIN = 5.0  # metres
+AUTOPILOT_GAP = 8.0  # metres kept to whatever is ahead
+
+
+class OfflineCarlaSimulator(DrivingSimulator):
+    """Scenic simulator interface for the offline CARLA world model."""
+
+    def __init__(self, network: Any = None, timestep: float = DEFAULT_TIMESTEP):
+        super().__init__()
+        self.network = network
+        self.timestep = float(timestep)
+
+    def createSimulation(self, scene: Any, **kwargs: Any) -> OfflineCarlaSimulation:
+        check_weather(scene.params.get("weather"))
+        if kwargs.get("timestep") is None:
+            kwargs["timestep"] = self.timestep
+        return OfflineCarlaSimulation(scene, self.network, **kwargs)
+
+
+def _wrap_angle(angle: float) -> float:
+    return (angle + math.pi) % (2 * math.pi) - math.pi
+
+
+class OfflineCarlaSimulation(DrivingSimulation):
+    def __init__(self, scene: Any, network: Any, **kwargs: Any):
+        self.network = network
+        self.arise_events: list[dict[str, Any]] = []
+        self.arise_lights: dict[str, str] = {}
+        super().__init__(scene, **kwargs)
+
+    # --- object life cycle -------------------------------------------------------
+    def createObjectInSimulator(self, obj: Any) -> None:
+        obj.speed = math.hypot(obj.velocity.x, obj.velocity.y)
+        if hasattr(obj, "elevation"):
+            obj.elevation = 0.0
+
+    def getProperties(self, obj: Any, properties: Any) -> dict[str, Any]:
+        yaw, _, _ = obj.parentOrientation.globalToLocalAngles(obj.heading, 0, 0)
+        values = dict(
+            position=obj.position,
+            yaw=yaw,
+            pitch=0,
+            roll=0,
+            velocity=obj.velocity,
+            speed=obj.speed,
+            angularSpeed=obj.angularSpeed,
+            angularVelocity=obj.angularVelocity,
+        )
+        if "elevation" in properties:
+            values["elevation"] = 0.0
+        return values
+
+    # --- physics -------------------------------------------------------------------
+    def step(self) -> None:
+        dt = self.timestep
+        for obj in self.objects:
+            if getattr(obj, "arise_autopilot", None):
+                self._drive_autopilot(obj)
+            walk = getattr(obj, "arise_walk", None)
+            if walk is not None and (walk[0] is not None or walk[1] is not None):
+                self._move_walker(obj, walk)
+            elif getattr(obj, "arise_steers", False):
+                self._move_vehicle(obj, dt)
+            else:
+                obj.speed = obj.velocity.norm()
+            override = getattr(obj, "arise_angular_override", None)
+            if override is not None:
+                obj.angularSpeed = override
+            obj.position += obj.velocity * dt
+            obj.heading += obj.angularSpeed * dt
+
+    @staticmethod
+    def _move_walker(obj: Any, walk: list[Any]) -> None:
+        heading = obj.heading if walk[0] is None else walk[0]
+        speed = obj.speed if walk[1] is None else walk[1]
+        obj.heading = heading
+        obj.velocity = Vector(0, speed).rotatedBy(heading)
+        obj.speed = abs(speed)
+        obj.angularSpeed = 0
+
+    @staticmethod
+    def _move_vehicle(obj: Any, dt: float) -> None:
+        forward_axis = Vector(0, 1).rotatedBy(obj.heading)
+        speed = obj.velocity.norm()
+        signed = speed if obj.velocity.dot(forward_axis) >= 0 else -speed
+        braking = max(obj.brake or 0, obj.hand_brake or 0)
+        if braking > 0:
+            decel = MAX_BRAKING * braking * dt
+            signed = 0.0 if decel >= abs(signed) else signed - math.copysign(decel, signed)
+        else:
+            accel = (obj.throttle or 0) * MAX_ACCELERATION
+            signed += (-accel if obj.reverse else accel) * dt
+        obj.velocity = Vector(0, signed).rotatedBy(obj.heading)
+        obj.speed = abs(signed)
+        steer = max(-1.0, min(1.0, obj.steer or 0))
+        if steer:
+            wheelbase = max(obj.length, 1.0)
+            obj.angularSpeed = -signed * math.sin(steer * math.pi / 2) / wheelbase
+        else:
+            obj.angularSpeed = 0
+
+    # --- autopilot (approximation of CARLA's Traffic Manager) ----------------------
+    def _drive_autopilot(self, obj: Any) -> None:
+        settings = obj.arise_autopilot
+        target_speed = settings["speed"]
+        aim = self._lane_point_ahead(obj, max(AUTOPILOT_LOOKAHEAD_MIN, obj.speed))
+        if aim is None:
+            obj.setThrottle(0.0)
+            obj.setBraking(1.0)
+            return
+        direction = aim - obj.position
+        desired = math.atan2(direction.y, direction.x) - math.pi / 2
+        error = _wrap_angle(desired - obj.heading)
+        obj.setSteering(max(-1.0, min(1.0, -1.5 * error)))
+        if self._blocked_ahead(obj):
+            obj.setThrottle(0.0)
+            obj.setBraking(1.0)
+        elif obj.speed < target_speed:
+            obj.setThrottle(min(1.0, 0.3 * (target_speed - obj.speed) + 0.2))
+            obj.setBraking(0.0)
+        else:
+            obj.setThrottle(0.0)
+            obj.setBraking(min(1.0, 0.2 * (obj.speed - target_speed)))
+
+    def _lane_point_ahead(self, obj: Any, distance: float) -> Vector | None:
+        if self.network is None:
+            return None
+        lane = self.network.laneAt(obj.position)
+        if lane is None:
+            return None
+        line = lane.centerline.lineString
+        from shapely.geometry import Point
+
+        s = line.project(Point(obj.position.x, obj.position.y)) + distance
+        while s > line.length:
+            s -= line.length
+            lane = self._next_lane(obj, lane)
+            if lane is None:
+                end = line.coords[-1]
+                return Vector(end[0], end[1])
+            line = lane.centerline.lineString
+        point = line.interpolate(s)
+        return Vector(point.x, point.y)
+
+    @staticmethod
+    def _next_lane(obj: Any, lane: Any) -> Any:
+        if not lane.maneuvers:
+            return getattr(lane, "successor", None)
+        choices = getattr(obj, "arise_turns", None)
+        if choices is None:
+            choices = obj.arise_turns = {}
+        if lane.uid not in choices:
+            straight = [m for m in lane.maneuvers if m.type.name == "STRAIGHT"]
+            chosen = (straight or list(lane.maneuvers))[0]
+            choices[lane.uid] = chosen.connectingLane or chosen.endLane
+        return choices[lane.uid]
+
+    def _blocked_ahead(self, obj: Any) -> bool:
+        forward = Vector(0, 1).rotatedBy(obj.heading)
+        for other in self.objects:
+            if other is obj:
+                continue
+            offset = other.position - obj.position
+            ahead = offset.dot(forward)
+            if 0 < ahead < AUTOPILOT_GAP + obj.length / 2 and abs(
+                offset.x * forward.y - offset.y * forward.x
+            ) < (obj.width + other.width) / 2:
+                return True
+        return False
+
+    # --- traffic lights: stored and recorded -------------------------------------
+    def _signals_near(self, obj: Any) -> list[Any]:
+        if self.network is None:
+            return []
+        lane = self.network.laneAt(obj.position)
+        found = []
+        if lane is not None:
+            for maneuver in lane.maneuvers:
+                found.extend(maneuver.intersection.signals)
+                break
+        if not found:
+            inter = self.network.intersectionAt(obj.position)
+            if inter is not None:
+                found.extend(inter.signals)
+        return [s for s in found if s.isTrafficLight]
+
+    def arise_set_closest_light(self, obj: Any, color: str, distance: float = 100) -> None:
+        signals = self._signals_near(obj)
+        for signal in signals:
+            self.arise_lights[str(signal.openDriveID)] = color
+        self.arise_events.append({
+            "step": self.currentTime, "agent": str(getattr(obj, "name", obj)),
+            "kind": "traffic_light", "color": color,
+            "signals": [str(s.openDriveID) for s in signals],
+        })
+
+    def arise_light_of(self, obj: Any) -> str | None:
+        signals = self._signals_near(obj)
+        if not signals:
+            return None
+        return self.arise_lights.get(str(signals[0].openDriveID), "green")
+
+    def arise_set_signal(self, signal: Any, color: str) -> None:
+        self.arise_lights[str(signal.openDriveID)] = color
+        self.arise_events.append({"step": self.currentTime, "agent": "world",
+                                  "kind": "traffic_light", "color": color,
+                                  "signals": [str(signal.openDriveID)]})
+
+    # --- controllers tuned for this physics ------------------------------------------
+    def _pid_pair(self, agent: Any, lateral: tuple[float, float, float]) -> tuple[Any, Any]:
+        dt = self.timestep
+        if getattr(agent, "isCar", False):
+            lon = PIDLongitudinalController(K_P=0.5, K_D=0.1, K_I=0.7, dt=dt)
+        else:
+            lon = PIDLongitudinalController(K_P=0.25, K_D=0.025, K_I=0.0, dt=dt)
+        kp, kd, ki = lateral
+        return lon, PIDLateralController(K_P=kp, K_D=kd, K_I=ki, dt=dt)
+
+    def getLaneFollowingControllers(self, agent: Any) -> tuple[Any, Any]:
+        return self._pid_pair(agent, (0.1, 0.1, 0.02))
+
+    def getTurningControllers(self, agent: Any) -> tuple[Any, Any]:
+        return self._pid_pair(agent, (0.2, 0.2, 0.2))
+
+    def getLaneChangingControllers(self, agent: Any) -> tuple[Any, Any]:
+        return self._pid_pair(agent, (0.2, 0.2, 0.02))
