@@ -25,8 +25,8 @@ app = typer.Typer(
     add_completion=False,
     pretty_exceptions_enable=False,
 )
-out = Console()
-err = Console(stderr=True)
+out = Console(soft_wrap=True)
+err = Console(stderr=True, soft_wrap=True)
 
 F = TypeVar("F", bound=Callable[..., Any])
 
@@ -65,12 +65,14 @@ def ping(
 ) -> None:
     """Send a one-word prompt and show which model answered and how fast (never cached)."""
     from arise.llm.registry import get_provider
+    from arise.llm.retry import RetryPolicy
     from arise.llm.structured import template
     from arise.llm.types import user
 
     llm = get_provider(
         provider,
         cache=False,
+        retry=RetryPolicy(attempts=2, base=0.5),  # a health check should answer fast
         record=record,
         replay=replay,
         model=model,

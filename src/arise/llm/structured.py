@@ -137,7 +137,8 @@ def complete_structured(
     total = Usage()
     latency = 0.0
     attempts = 0
-    for _ in range(max(0, max_reasks) + 1):
+    allowed = max(0, max_reasks) + 1
+    for _ in range(allowed):
         attempts += 1
         current = replace(
             request, messages=tuple(messages), json_schema=schema, schema_name=model.__name__
@@ -151,7 +152,8 @@ def complete_structured(
             problem = describe_error(exc)
             errors.append(problem)
             messages.append(assistant(reply.text))
-            messages.append(user(template("reask.txt").format(errors=problem)))
+            if attempts < allowed:  # the transcript ends with the last reply, not an unsent ask
+                messages.append(user(template("reask.txt").format(errors=problem)))
             continue
         return replace(
             reply,
