@@ -56,9 +56,21 @@ def _deepest_frame_file(tb: TracebackType | None) -> str:
     return frames[-1].filename if frames else ""
 
 
-def hint_for(error_type: str, message: str, vocabulary: Iterable[str] = ()) -> str | None:
+_SCENIC2_OBJECT = re.compile(
+    r"(?:^|=)\s*(?!new\b)([A-Z]\w*)\s+(?:at|on|in|with|following|ahead\s+of|behind|left\s+of|"
+    r"right\s+of|offset\s+by|facing|beyond|visible|contained\s+in)\b")
+
+
+def looks_like_scenic2(code_line: str | None) -> bool:
+    """An object created without `new`, as Scenic 2 allowed."""
+    return bool(code_line and _SCENIC2_OBJECT.search(code_line.split("#", 1)[0]))
+
+
+def hint_for(error_type: str, message: str, vocabulary: Iterable[str] = (),
+             code_line: str | None = None) -> str | None:
     """A short, concrete suggestion for errors we recognise."""
-    if "forgot 'new'" in message or "forgot \"new\"" in message:
+    if "forgot 'new'" in message or "forgot \"new\"" in message or (
+            error_type in ("ScenicParseError", "SyntaxError") and looks_like_scenic2(code_line)):
         return ("Scenic 3 creates objects with `new`: write `x = new Car ...`, "
                 "not `x = Car ...` (Scenic 2 syntax).")
     name = _NAME_ERROR.search(message)
@@ -69,16 +81,9 @@ def hint_for(error_type: str, message: str, vocabulary: Iterable[str] = ()) -> s
         return (f"'{name.group(1)}' is not defined: declare it (e.g. "
                 f"`param {name.group(1)} = ...` and read it via globalParameters) or use a "
                 "name the CARLA model provides.")
-    if "blueprint" in message.lower():
-        from scenic.simulators.carla.blueprints import _IDS  # the installed CARLA table
-
-        wanted = _BLUEPRINT.search(message)
-        known = sorted({b for ids in _IDS.values() for b in ids})
-        if wanted:
-            close = difflib.get_close_matches(wanted.group(1), known, n=3, cutoff=0.6)
-            if close:
-                return f"unknown CARLA blueprint; close valid ones: {', '.join(close)}"
-        return "unknown CARLA blueprint; see `arise check --help` for the blueprint table."
+    if error_type == "UnknownBlueprintError":
+        return ("use a blueprint of the installed CARLA version "
+                "(`arise blueprints` lists them), or leave the blueprint out for a random one.")
     if error_type == "SpecifierError":
         return ("two specifiers conflict or one needs a property no other specifier gives; "
                 "give each property (position, heading, ...) once.")
@@ -88,6 +93,8 @@ def hint_for(error_type: str, message: str, vocabulary: Iterable[str] = ()) -> s
         return "the script allocates more memory than the check allows."
     if error_type == "StuckBehaviorWarning":
         return "a behavior loops without `take` or `wait`; add `wait` inside the loop."
+    if "ego object not yet assigned" in message or "did not specify an ego" in message:
+        return "define the ego first: `ego = new Car ...`, before anything that refers to it."
     if error_type == "WeatherError":
         return "use a CARLA weather preset name (e.g. 'ClearNoon') or a dict of its parameters."
     return None
@@ -110,7 +117,7 @@ def from_exception(
         getattr(exc, "filename", None) in (None, script_path, "<string>")
         or str(getattr(exc, "filename", "")).endswith(Path(script_path).name)
     ):
-        line = exc.lineno  # type: ignore[attr-defined]
+        line = exc.lineno
         offset = getattr(exc, "offset", None)
         column = offset if isinstance(offset, int) else None
         message = getattr(exc, "msg", None) or message
@@ -128,17 +135,48 @@ def from_exception(
             line, column = info.model_line, None
             hint = (f"world model '{info.model}' cannot be imported; use "
                     "`model scenic.simulators.carla.model`.")
-        elif "ego" in message.lower() and info.ego_line:
+        elif info.ego_line and (line == 1 or "ego" in message.lower()):
+            # Scenic reports errors of the `ego = new ...` statement at line 1.
             line, column = info.ego_line, None
     if line is None and stage is Stage.COMPILE and "model" in message.lower() and info.model_line:
         line = info.model_line
+    if line is None and error_type == "WeatherError":
+        line = info.param_lines.get("weather")
+    if line is None and error_type == "UnknownBlueprintError":
+        wanted = _BLUEPRINT.search(message)
+        if wanted:
+            line = _first_line_containing(text, wanted.group(1))
+    lines = text.splitlines()
+    code_line = lines[line - 1] if line and 0 < line <= len(lines) else None
     return Diagnostic(
         stage=stage,
         error_type=error_type,
         message=message.strip().splitlines()[0] if message.strip() else error_type,
-        hint=hint or hint_for(error_type, message, vocabulary),
+        hint=hint or hint_for(error_type, message, vocabulary, code_line),
         **locate(text, line, column),  # type: ignore[arg-type]
     )
+
+
+def _first_line_containing(text: str, needle: str) -> int | None:
+    for number, line in enumerate(text.splitlines(), start=1):
+        if needle in line:
+            return number
+    return None
+
+
+_INTERSECTS = re.compile(r"(?:unnamed )?(\w+) intersects (?:unnamed )?(\w+)")
+
+
+def _creation_line(text: str, reason: str) -> int | None:
+    """For an overlap rejection, the line creating the later of the two objects."""
+    match = _INTERSECTS.search(reason)
+    if not match:
+        return None
+    found = None
+    for number, line in enumerate(text.splitlines(), start=1):
+        if re.search(rf"\bnew\s+({match.group(1)}|{match.group(2)})\b", line):
+            found = number
+    return found
 
 
 def rejections_from_log(log: str, text: str) -> list[Rejection]:
@@ -151,7 +189,7 @@ def rejections_from_log(log: str, text: str) -> list[Rejection]:
     found = []
     for reason, count in reasons.most_common():
         line_match = _REQUIREMENT_LINE.search(reason)
-        line = int(line_match.group(1)) if line_match else None
+        line = int(line_match.group(1)) if line_match else _creation_line(text, reason)
         code = lines[line - 1].strip() if line and 0 < line <= len(lines) else None
         found.append(Rejection(reason=reason, count=count, line=line,
                                section=section_of_line(text, line), code=code))
@@ -162,9 +200,15 @@ def rejection_diagnostic(stage: Stage, message: str, rejections: list[Rejection]
                          text: str, attempts: int) -> Diagnostic:
     """Name the requirement(s) that threw away the samples or simulations."""
     top = rejections[0] if rejections else None
-    if top is not None and top.line is not None:
+    if top is not None and top.line is not None and "intersects" in top.reason:
+        hint = (f"objects overlap at spawn in {top.count} of {attempts} tries ({top.reason}); "
+                f"place the object created on line {top.line} farther from the others.")
+    elif top is not None and top.line is not None:
         hint = (f"the requirement on line {top.line} rejected {top.count} of {attempts} "
                 f"tries: `{top.code}`; loosen it or change the placement it constrains.")
+    elif top is not None and "empty domain" in top.reason:
+        hint = ("a Uniform(...) chose from an empty list: nothing on this map matches the "
+                "filter (e.g. no such maneuver or lane); widen the filter or use another map.")
     elif top is not None:
         hint = (f"most tries were rejected because {top.reason} ({top.count} of {attempts}); "
                 "check the placement of the objects involved (overlap, off-road, not in a lane).")

@@ -19,9 +19,9 @@ KNOWN_MODELS = {
 
 _MODEL = re.compile(r"^\s*model\s+([A-Za-z_][\w.]*)\s*$", re.M)
 _PARAM = re.compile(r"^\s*param\s+(\w+)\s*=\s*(.+?)\s*$", re.M)
-_TOWN_LITERAL = re.compile(r"""['"]?(Town\d+\w*?)(?:\.xodr)?['"]""")
-_ASSIGN_TOWN = re.compile(r"""^\s*(\w+)\s*=\s*['"](Town\d+\w*)['"]\s*$""", re.M)
-_XODR = re.compile(r"""['"]([^'"]+\.xodr)['"]""")
+_STRING_ASSIGN = re.compile(r"""^\s*(\w+)\s*=\s*f?['"]([^'"]+)['"]\s*$""", re.M)
+_STRING = re.compile(r"""f?['"]([^'"]*)['"]""")
+_PLACEHOLDER = re.compile(r"\{(\w+)\}")
 
 
 @dataclass(frozen=True)
@@ -33,45 +33,44 @@ class ScriptInfo:
     requested_map: str | None  # a town name like "Town05" or a map file stem
     requested_map_file: str | None  # a literal .xodr path, if the script gives one
     ego_line: int | None
+    param_lines: dict[str, int]
 
 
 def _line_of(text: str, position: int) -> int:
     return text.count("\n", 0, position) + 1
 
 
+def _resolve_string(expression: str, strings: dict[str, str]) -> str | None:
+    """The string an expression spells, filling f-string fields from simple assignments."""
+    expression = expression.strip()
+    if expression in strings:
+        return strings[expression]
+    literal = _STRING.search(expression)
+    if not literal:
+        return None
+    value = _PLACEHOLDER.sub(lambda m: strings.get(m.group(1), m.group(0)), literal.group(1))
+    return None if "{" in value else value
+
+
 def read_script_info(text: str) -> ScriptInfo:
     model_match = _MODEL.search(text)
     params = {m.group(1): m for m in _PARAM.finditer(text)}
+    strings = {m.group(1): m.group(2) for m in _STRING_ASSIGN.finditer(text)}
     map_match = params.get("map")
     carla_map = params.get("carla_map")
-    town_vars = {m.group(1): m.group(2) for m in _ASSIGN_TOWN.finditer(text)}
 
     requested: str | None = None
     requested_file: str | None = None
-    if carla_map:
-        literal = _TOWN_LITERAL.search(carla_map.group(2))
-        if literal:
-            requested = literal.group(1)
-        elif carla_map.group(2).strip() in town_vars:
-            requested = town_vars[carla_map.group(2).strip()]
     if map_match:
-        expression = map_match.group(2)
-        file_literal = _XODR.search(expression)
-        if file_literal and "{" not in file_literal.group(1):
-            requested_file = file_literal.group(1)
-        if requested is None:
-            literal = _TOWN_LITERAL.search(expression)
-            if literal:
-                requested = literal.group(1)
-            else:
-                for name, town in town_vars.items():
-                    if re.search(rf"\b{name}\b", expression):
-                        requested = town
-                        break
-        if requested is None and requested_file:
-            requested = requested_file.rsplit("/", 1)[-1].removesuffix(".xodr")
-    if requested is None and town_vars:
-        requested = next(iter(town_vars.values()))
+        value = _resolve_string(map_match.group(2), strings)
+        if value and value.endswith(".xodr"):
+            requested_file = value
+            requested = value.replace("\\", "/").rsplit("/", 1)[-1].removesuffix(".xodr")
+    if requested is None and carla_map:
+        requested = _resolve_string(carla_map.group(2), strings)
+    if requested is None:
+        towns = [v for v in strings.values() if re.fullmatch(r"Town\d+\w*", v)]
+        requested = towns[0] if towns else None
 
     ego = re.search(r"^\s*ego\s*=", text, re.M)
     return ScriptInfo(
@@ -82,4 +81,5 @@ def read_script_info(text: str) -> ScriptInfo:
         requested_map=requested,
         requested_map_file=requested_file,
         ego_line=_line_of(text, ego.start()) if ego else None,
+        param_lines={name: _line_of(text, m.start()) for name, m in params.items()},
     )

@@ -7,6 +7,7 @@ the parent can name the stage of a timeout, and stays warm between checks.
 
 from __future__ import annotations
 
+import _thread
 import io
 import json
 import os
@@ -17,10 +18,10 @@ import sys
 import threading
 import time
 import warnings
-import _thread
+from collections.abc import Callable
 from contextlib import redirect_stdout
 from pathlib import Path
-from typing import Any, Callable
+from typing import Any
 
 from arise.validate.diagnostics import (
     from_exception,
@@ -36,7 +37,6 @@ from arise.validate.types import (
     CheckResult,
     Diagnostic,
     MapChoice,
-
     SimulationFacts,
     Stage,
     TracePoint,
@@ -44,6 +44,7 @@ from arise.validate.types import (
 
 Emit = Callable[[dict[str, Any]], None]
 OFFLINE_MODEL = "arise.validate.worldmodel.model"
+STUCK_BEHAVIOR_SECONDS = 3  # a behavior step this long without an action is a bug
 SOFT_TIMEOUT_GRACE = 2.0  # seconds between our own interrupt and the parent's kill
 
 
@@ -69,7 +70,7 @@ def _warm_up() -> None:
     from scenic.core.dynamics import StuckBehaviorWarning
     from scenic.domains.driving.roads import Network
 
-    original = Network.fromFile.__func__  # type: ignore[attr-defined]
+    original = Network.fromFile.__func__
 
     def cached_from_file(cls: Any, path: Any, useCache: bool = True,
                          writeCache: bool = True, **kwargs: Any) -> Any:
@@ -84,7 +85,7 @@ def _warm_up() -> None:
                                            writeCache=writeCache, **kwargs)
         return _NETWORK_CACHE[key]
 
-    Network.fromFile = classmethod(cached_from_file)  # type: ignore[method-assign, assignment]
+    Network.fromFile = classmethod(cached_from_file)
 
     def trace_state(self: Any) -> tuple[tuple[float, float, float, float], ...]:
         return tuple(
@@ -92,9 +93,12 @@ def _warm_up() -> None:
             for o in self.objects
         )
 
-    simulators.Simulation.currentState = trace_state  # type: ignore[method-assign]
+    simulators.Simulation.currentState = trace_state
     _memoise_library_parsing()
     warnings.simplefilter("error", StuckBehaviorWarning)
+    import scenic.core.dynamics as dynamics
+
+    dynamics.stuckBehaviorWarningTimeout = STUCK_BEHAVIOR_SECONDS
     _VOCABULARY.extend(_build_vocabulary())
 
 

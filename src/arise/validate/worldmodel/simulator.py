@@ -18,6 +18,7 @@ from scenic.domains.driving.controllers import (
 )
 from scenic.domains.driving.simulators import DrivingSimulation, DrivingSimulator
 
+from arise.validate.worldmodel.blueprints import check_blueprint
 from arise.validate.worldmodel.weather import check_weather
 
 MAX_ACCELERATION = 5.6  # m/s^2
@@ -55,6 +56,7 @@ class OfflineCarlaSimulation(DrivingSimulation):
 
     # --- object life cycle -------------------------------------------------------
     def createObjectInSimulator(self, obj: Any) -> None:
+        check_blueprint(obj)
         obj.speed = math.hypot(obj.velocity.x, obj.velocity.y)
         if hasattr(obj, "elevation"):
             obj.elevation = 0.0
