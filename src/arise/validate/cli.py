@@ -17,8 +17,8 @@ from arise.validate.api import check
 from arise.validate.pool import WorkerPool
 from arise.validate.types import CheckOptions, CheckResult
 
-console = Console(stderr=False)
-errors = Console(stderr=True)
+console = Console(soft_wrap=True)
+errors = Console(stderr=True, soft_wrap=True)
 
 STAGE_WORDS = {"gate": "static gate", "parse": "parsing", "compile": "compiling",
                "sample": "sampling a scene", "simulate": "simulating"}

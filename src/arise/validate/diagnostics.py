@@ -81,6 +81,12 @@ def hint_for(error_type: str, message: str, vocabulary: Iterable[str] = (),
         return (f"'{name.group(1)}' is not defined: declare it (e.g. "
                 f"`param {name.group(1)} = ...` and read it via globalParameters) or use a "
                 "name the CARLA model provides.")
+    if "from inside guard or interrupt condition" in message:
+        return ("Scenic 3.1 cannot evaluate visibility (`can see`, withinDistanceToAnyObjs) "
+                "inside an interrupt condition; use withinDistanceToObjsInLane or a distance test.")
+    if "OfflineCarlaSimulation" in message or "carlaActor" in message:
+        return ("the script uses CARLA's own Python API (simulation().world, carlaActor, ...), "
+                "which only a real CARLA server provides: run with --simulator carla.")
     if error_type == "UnknownBlueprintError":
         return ("use a blueprint of the installed CARLA version "
                 "(`arise blueprints` lists them), or leave the blueprint out for a random one.")

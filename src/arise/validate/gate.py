@@ -143,10 +143,12 @@ def scan_tokens(text: str) -> list[Refusal]:
             if module.startswith(".") or not module_allowed(module):
                 refusals.append(Refusal(f"import of module '{module}' is not allowed", number,
                                         line.index(module) + 1 if module in line else 1))
+    tokens: list[tokenize.TokenInfo] = []
     try:
-        tokens = list(tokenize.generate_tokens(io.StringIO(text).readline))
+        for token in tokenize.generate_tokens(io.StringIO(text).readline):
+            tokens.append(token)
     except (tokenize.TokenError, IndentationError, SyntaxError):
-        return refusals
+        pass  # keep the tokens read before the error
     for previous, token in zip([None, *tokens], tokens, strict=False):
         if token.type != tokenize.NAME:
             continue
