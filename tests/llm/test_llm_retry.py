@@ -46,12 +46,13 @@ class Scripted:
         self.script = list(script)
         self.delay = delay
         self.hits = 0
+        self.bodies: list[dict[str, Any]] = []
         outer = self
 
         class Handler(BaseHTTPRequestHandler):
             def do_POST(self) -> None:  # noqa: N802 - http.server's naming
                 length = int(self.headers.get("content-length", 0))
-                self.rfile.read(length)
+                outer.bodies.append(json.loads(self.rfile.read(length) or b"{}"))
                 outer.hits += 1
                 index = min(outer.hits - 1, len(outer.script) - 1)
                 status, body, headers = outer.script[index]
@@ -198,3 +199,52 @@ def test_connection_refused_says_what_to_set(sleeps: list[float]) -> None:
     message = str(info.value)
     assert "cannot reach" in message and "ARISE_BASE_URL" in message and "2 attempt" in message
     assert len(sleeps) == 1
+
+
+def test_anthropic_overloaded_then_tool_answer(
+    sleeps: list[float], monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """Anthropic's client, our error translation and the forced tool call, on loopback."""
+    pytest.importorskip("anthropic")
+    from pydantic import BaseModel
+
+    from arise.llm import get_provider
+
+    class Weather(BaseModel):
+        condition: str
+
+    answer = {
+        "id": "msg_1",
+        "type": "message",
+        "role": "assistant",
+        "model": "claude-scripted",
+        "content": [
+            {"type": "tool_use", "id": "toolu_1", "name": "Weather", "input": {"condition": "rain"}}
+        ],
+        "stop_reason": "tool_use",
+        "stop_sequence": None,
+        "usage": {"input_tokens": 12, "output_tokens": 5},
+    }
+    overloaded = {"type": "error", "error": {"type": "overloaded_error", "message": "busy"}}
+    monkeypatch.setenv("ANTHROPIC_API_KEY", "test-key-not-real")
+    with Scripted([(529, overloaded, {}), (200, answer, {})]) as server:
+        llm = get_provider(
+            "anthropic",
+            base_url=server.base_url.removesuffix("/v1"),
+            cache=False,
+            retry=RetryPolicy(attempts=3, base=0.01),
+        )
+        reply = llm.complete(
+            [{"role": "system", "content": "Extract."}, {"role": "user", "content": "Rainy."}],
+            max_tokens=50,
+            schema=Weather,
+        )
+        assert server.hits == 2
+    assert isinstance(reply.parsed, Weather) and reply.parsed.condition == "rain"
+    assert reply.usage.prompt_tokens == 12 and reply.model == "claude-scripted"
+    sent = server.bodies[-1]
+    assert sent["system"] == "Extract." and sent["messages"] == [
+        {"role": "user", "content": "Rainy."}
+    ]
+    assert sent["tool_choice"] == {"type": "tool", "name": "Weather"}
+    assert sent["tools"][0]["input_schema"]["properties"]["condition"]["type"] == "string"

@@ -192,5 +192,5 @@ def test_cli_info_shows_key_state_not_values(tmp_path: Path) -> None:
     finally:
         del os.environ["OPENAI_API_KEY"]
     assert result.returncode == 0, result.stderr
-    assert "OPENAI_API_KEY (set)" in result.stdout
+    assert "key OPENAI_API_KEY: set" in result.stdout
     assert env_key not in result.stdout

@@ -14,7 +14,6 @@ from typing import Annotated, Any, TypeVar
 
 import typer
 from rich.console import Console
-from rich.table import Table
 
 from arise.llm import model_files
 from arise.llm.types import LLMError
@@ -133,23 +132,30 @@ def info() -> None:
 
     settings = load_settings()
     path = settings.config_path or config_path()
-    state = "read" if settings.config_path else "absent (using built-in presets)"
-    out.print(f"config file: {path} [{state}]", highlight=False)
-    out.print(f"default provider: [bold]{settings.provider}[/bold]", highlight=False)
-    table = Table(show_edge=False)
-    for column in ("provider", "kind", "model", "base URL", "key", "structured"):
-        table.add_column(column)
+    state = "read" if settings.config_path else "absent, using the built-in presets"
+    out.print(f"config file: {path} ({state})", highlight=False, markup=False)
+    out.print(f"default provider: {settings.provider}", highlight=False, markup=False)
+    out.print("providers:", highlight=False)
     for name, p in sorted(settings.profiles.items()):
+        where = p.base_url or "(default endpoint)"
+        if p.kind == "local":
+            where = str(p.model_path or model_files.default_model_path())
+        elif p.kind == "replay":
+            where = p.cassette or "(--replay FILE)"
         if p.api_key_env:
-            found = "set" if os.environ.get(p.api_key_env) else "missing" if p.key_required else "-"
-            key = f"{p.api_key_env} ({found})"
+            if os.environ.get(p.api_key_env):
+                key = f"key {p.api_key_env}: set"
+            elif p.key_required:
+                key = f"key {p.api_key_env}: MISSING"
+            else:
+                key = f"key {p.api_key_env}: optional"
         else:
-            key = "-"
-        base = p.base_url or (
-            str(p.model_path or model_files.default_model_path()) if p.kind == "local" else "-"
+            key = "no key"
+        out.print(
+            f"  {name:<10} {p.kind:<9} {p.model:<36} {where}  [{key}; structured {p.structured}]",
+            highlight=False,
+            markup=False,
         )
-        table.add_row(name, p.kind, p.model, base, key, p.structured)
-    out.print(table)
     model = model_files.default_model_path()
     if model_files.is_installed(model):
         out.print(f"local model: {model} (installed)", highlight=False)

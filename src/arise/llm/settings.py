@@ -132,7 +132,7 @@ PRESETS: dict[str, ProviderSettings] = {
         ProviderSettings(
             "gemini",
             "openai",
-            model="gemini-2.0-flash",
+            model="gemini-2.5-flash",
             base_url="https://generativelanguage.googleapis.com/v1beta/openai/",
             api_key_env="GEMINI_API_KEY",
             key_required=True,
@@ -143,7 +143,7 @@ PRESETS: dict[str, ProviderSettings] = {
         ProviderSettings(
             "anthropic",
             "anthropic",
-            model="claude-3-5-haiku-latest",
+            model="claude-haiku-4-5",
             api_key_env="ANTHROPIC_API_KEY",
             key_required=True,
             structured="tool",
