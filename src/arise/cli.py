@@ -2,10 +2,12 @@
 
 from __future__ import annotations
 
+import warnings
+
 import typer
 
 from arise.llm.cli import app as llm_app
-from arise.validate.cli import CHECK_HELP, check_command, maps_app
+from arise.validate.cli import CHECK_HELP, blueprints_command, check_command, maps_app
 
 app = typer.Typer(
     name="arise",
@@ -15,9 +17,12 @@ app = typer.Typer(
     pretty_exceptions_enable=False,
 )
 app.command("check", help=CHECK_HELP)(check_command)
+app.command("blueprints")(blueprints_command)
 app.add_typer(maps_app, name="maps")
 app.add_typer(llm_app, name="llm")
 
 
 def main() -> None:
+    # Scenic complains when another library already owns sys.excepthook; harmless here.
+    warnings.filterwarnings("ignore", message="unable to install sys.excepthook")
     app()

@@ -59,6 +59,9 @@ def _print_result(result: CheckResult) -> None:
         note = f" (substitute for {result.map.requested})" if result.map.substituted and \
             result.map.requested else ""
         console.print(f"  map: {result.map.name}{note}")
+    for rejection in result.simulation_rejections:
+        console.print(f"  [yellow]note:[/yellow] {rejection.count} simulation(s) rejected "
+                      f"before this one: {rejection.reason}")
     for warning in result.warnings:
         console.print(f"  [yellow]note:[/yellow] {warning}")
     if result.diagnostic is not None:
@@ -175,3 +178,20 @@ def maps_list(
         table.add_row(name, entry.source, ", ".join(sorted(entry.features)) or "?",
                       os.path.relpath(entry.path) if entry.path else "-")
     console.print(table)
+
+
+def blueprints_command(
+    category: Annotated[str | None, typer.Argument(
+        help="car, truck, motorcycle, bicycle, walker, busStop, ... (all if omitted)")] = None,
+) -> None:
+    """List the CARLA blueprints of the installed CARLA version, by category."""
+    import scenic.simulators.carla.blueprints as table
+
+    categories = sorted(name.removesuffix("Models") for name in dir(table)
+                        if name.endswith("Models") and isinstance(getattr(table, name), list))
+    if category is not None and category not in categories:
+        errors.print(f"[red]error:[/red] unknown category {category!r}; "
+                     f"choose from {', '.join(categories)}")
+        raise typer.Exit(2)
+    for name in [category] if category else categories:
+        console.print(f"[bold]{name}[/bold]: " + ", ".join(getattr(table, f"{name}Models")))

@@ -134,6 +134,9 @@ class CheckResult(BaseModel):
     spawn_attempts_used: int = 0
     sample_iterations_used: int = 0
     simulation: SimulationFacts | None = None
+    # Simulations rejected (and re-sampled) before the one that ran, e.g. a `require always`
+    # that failed for some scenes: a script may pass yet be fragile.
+    simulation_rejections: list[Rejection] = Field(default_factory=list)
     png: str | None = None
 
     def summary(self) -> str:

@@ -407,6 +407,7 @@ def _run_stages(path: str, text: str, info: ScriptInfo, options: CheckOptions,
                                  if "Rejected simulation" in line)
             continue
         result.simulation = _simulation_facts(simulation)
+        result.simulation_rejections = rejections_from_log("\n".join(rejected_sims), text)
         if options.png:
             started = time.perf_counter()
             from arise.validate.render import draw_scene

@@ -9,9 +9,9 @@ param weather = 'ClearNoon'
 param OPT_ADV_SPEED = Range(1.5, 2.5)
 param OPT_TRIGGER = Range(12, 18)
 behavior AdversaryBehavior():
-    do CrossingBehavior(ego, globalParameters.OPT_ADV_SPEED, globalParameters.OPT_TRIGGER) until (distance from self to ego) < 4
     while True:
         speed = 0
+    take SetWalkingSpeedAction(0)
 # END BEHAVIOR
 # BEGIN GEOMETRY
 EGO_MODEL = "vehicle.lincoln.mkz_2017"

@@ -27,6 +27,6 @@ AdvAgent = new Pedestrian right of AdvSpawnPt by 4, facing 90 deg relative to Ad
 # BEGIN REQUIREMENTS
 require (distance to intersection) > 30
 require (distance from AdvAgent to intersection) > 15
-require always (distance to AdvAgent) > 12
+require eventually ego.speed > 20
 terminate when (distance to EgoSpawnPt) > 60
 # END REQUIREMENTS
