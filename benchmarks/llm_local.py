@@ -85,6 +85,24 @@ def load() -> list[float]:
     return [round(x, 2) for x in os.getloadavg()]
 
 
+def cpu_snapshot() -> tuple[float, float, float]:
+    """(all busy CPU seconds on the machine, this process's CPU seconds, wall time)."""
+    with open("/proc/stat") as fh:
+        fields = [int(x) for x in fh.readline().split()[1:]]
+    tick = os.sysconf("SC_CLK_TCK")
+    user, nice, system_, _idle, _iowait, irq, softirq, steal = fields[:8]
+    busy = (user + nice + system_ + irq + softirq + steal) / tick
+    own = os.times()
+    return busy, own.user + own.system, time.monotonic()
+
+
+def others_cores(before: tuple[float, float, float]) -> float:
+    """Cores used on average by *other* processes since ``before`` (the load average
+    counts our own threads too, so it cannot tell a quiet machine from a busy one)."""
+    busy, own, wall = cpu_snapshot()
+    return round(max(0.0, (busy - before[0]) - (own - before[1])) / max(wall - before[2], 1e-9), 2)
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(
         description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter
@@ -121,6 +139,7 @@ def main() -> None:
 
     # 1. prefix reuse
     prefix = prefix_of_about(provider, f"reuse-{nonce}", args.prefix_tokens)
+    snap = cpu_snapshot()
     first = call(provider, prefix, "A cyclist swerves into the lane at dusk. Give the fields.", 16)
     second = call(provider, prefix, "A bus stops at a bus stop in the rain. Give the fields.", 16)
     ratio = (first.first_token_latency or 0) / max(second.first_token_latency or 1e-9, 1e-9)
@@ -129,6 +148,7 @@ def main() -> None:
         "first": row(first),
         "second": row(second),
         "ttft_ratio": round(ratio, 1),
+        "other_processes_cores": others_cores(snap),
     }
 
     # 2. throughput per thread count
@@ -136,6 +156,7 @@ def main() -> None:
     for threads in [int(t) for t in args.threads.split(",") if t.strip()]:
         provider.set_threads(threads)
         fresh = prefix_of_about(provider, f"tp{threads}-{nonce}", args.prefix_tokens)
+        snap = cpu_snapshot()
         prompt_call = call(provider, fresh, "Say ok.", 1)
         d = prompt_call.details
         gen_call = provider.send(
@@ -153,6 +174,7 @@ def main() -> None:
                 "gen_tokens": g["generated_tokens_evaluated"],
                 "gen_tok_s": round(g["generated_tokens_evaluated"] / g["generation_seconds"], 1),
                 "load_after": load(),
+                "other_processes_cores": others_cores(snap),
             }
         )
     result["load_after"] = load()
@@ -173,10 +195,13 @@ def main() -> None:
         print(
             f"| {name} | {r['prompt_tokens']} | {r['prompt_tokens_evaluated']} | {r['ttft_s']} | {r['latency_s']} |"
         )
-    print(f"\nTTFT first / second = {reuse['ttft_ratio']}x")
+    print(
+        f"\nTTFT first / second = {reuse['ttft_ratio']}x "
+        f"(other processes used {reuse['other_processes_cores']} cores meanwhile)"
+    )
     print()
-    print("| threads | prompt tok/s | gen tok/s | load average after |")
-    print("|---:|---:|---:|---|")
+    print("| threads | prompt tok/s | gen tok/s | other processes (cores) | load average after |")
+    print("|---:|---:|---:|---:|---|")
     for t in result["throughput"]:
         print(
             f"| {t['threads']} | {t['prompt_tok_s']} ({t['prompt_tokens']} tok) | "

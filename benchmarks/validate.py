@@ -8,6 +8,7 @@ Prints a Markdown table; copy it into docs/benchmarks.md with the machine and da
 from __future__ import annotations
 
 import argparse
+import contextlib
 import os
 import platform
 import re
@@ -42,10 +43,8 @@ class PeakRss:
         me = psutil.Process()
         while not self._stop.is_set():
             for child in me.children(recursive=True):
-                try:
+                with contextlib.suppress(psutil.Error):
                     self.peak = max(self.peak, child.memory_info().rss)
-                except psutil.Error:
-                    pass
             time.sleep(0.05)
 
     def __enter__(self) -> PeakRss:

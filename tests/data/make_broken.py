@@ -1,6 +1,6 @@
 """Write broken variants of the base script (dev helper, run once)."""
-import re, sys
 from pathlib import Path
+
 base = Path('/work/main/tests/data/base_crossing.scenic').read_text()
 out = Path('/work/main/tests/data/broken')
 def sub(old, new, count=1):
