@@ -172,7 +172,7 @@ class OfflineCarlaSimulation(DrivingSimulation):
     @staticmethod
     def _next_lane(obj: Any, lane: Any) -> Any:
         if not lane.maneuvers:
-            return getattr(lane, "successor", None)
+            return getattr(lane, "_successor", None)  # `successor` rejects at a dead end
         choices = getattr(obj, "arise_turns", None)
         if choices is None:
             choices = obj.arise_turns = {}
