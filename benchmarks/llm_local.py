@@ -205,7 +205,8 @@ def main() -> None:
     for t in result["throughput"]:
         print(
             f"| {t['threads']} | {t['prompt_tok_s']} ({t['prompt_tokens']} tok) | "
-            f"{t['gen_tok_s']} ({t['gen_tokens']} tok) | {t['load_after']} |"
+            f"{t['gen_tok_s']} ({t['gen_tokens']} tok) | {t['other_processes_cores']} | "
+            f"{t['load_after']} |"
         )
     if args.json:
         args.json.parent.mkdir(parents=True, exist_ok=True)
