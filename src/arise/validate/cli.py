@@ -4,8 +4,10 @@ from __future__ import annotations
 
 import json
 import os
+from collections.abc import Callable
+from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
-from typing import Annotated
+from typing import Annotated, Any
 
 import typer
 from rich.console import Console
@@ -132,21 +134,30 @@ def check_command(
                            carla_host=carla_host, carla_port=carla_port)
     many = len(scripts) > 1
     results: list[CheckResult] = []
-    with WorkerPool(size=min(workers, len(scripts)), memory_mb=memory_mb) as pool:
-        for script in scripts:
+    with WorkerPool(size=max(1, min(workers, len(scripts))), memory_mb=memory_mb) as pool:
+        def run_one(script: Path, on_stage: Callable[[str], None] | None = None) -> CheckResult:
             per_script = options.model_copy(update={"png": _png_target(png, script, many)})
-            if as_json or not console.is_terminal:
-                result = check(script, per_script, pool=pool, registry=registry)
-            else:
-                with console.status(f"{script}: starting") as status:
-                    def show(stage: str, status=status, script=script) -> None:
-                        status.update(f"{script}: {STAGE_WORDS.get(stage, stage)}…")
+            return check(script, per_script, pool=pool, registry=registry, on_stage=on_stage)
 
-                    result = check(script, per_script, pool=pool, registry=registry,
-                                   on_stage=show)
-            results.append(result)
-            if not as_json:
-                _print_result(result)
+        if workers > 1 and many:
+            with ThreadPoolExecutor(max_workers=pool.size) as executor:
+                for result in executor.map(run_one, scripts):
+                    results.append(result)
+                    if not as_json:
+                        _print_result(result)
+        else:
+            for script in scripts:
+                if as_json or not console.is_terminal:
+                    result = run_one(script)
+                else:
+                    with console.status(f"{script}: starting") as status:
+                        def show(stage: str, status: Any = status, script: Path = script) -> None:
+                            status.update(f"{script}: {STAGE_WORDS.get(stage, stage)}…")
+
+                        result = run_one(script, show)
+                results.append(result)
+                if not as_json:
+                    _print_result(result)
     if as_json:
         payload = [r.model_dump(mode="json") for r in results]
         print(json.dumps(payload if many else payload[0], indent=2))

@@ -15,6 +15,7 @@ import select
 import signal
 import subprocess
 import sys
+import threading
 import time
 from collections.abc import Callable
 from typing import Any
@@ -138,18 +139,23 @@ class WorkerPool:
         self._idle: queue.LifoQueue[Worker] = queue.LifoQueue()
         self._started = 0
         self._closed = False
+        self._lock = threading.Lock()
 
     def _take(self) -> Worker:
         try:
             return self._idle.get_nowait()
         except queue.Empty:
             pass
-        if self._started < self.size:
-            self._started += 1
+        with self._lock:
+            may_start = self._started < self.size
+            if may_start:
+                self._started += 1
+        if may_start:
             try:
                 return Worker(self.memory_mb)
             except Exception:
-                self._started -= 1
+                with self._lock:
+                    self._started -= 1
                 raise
         return self._idle.get()
 
@@ -159,7 +165,8 @@ class WorkerPool:
             self._idle.put(worker)
             return
         worker.kill()
-        self._started -= 1
+        with self._lock:
+            self._started -= 1
 
     def warm(self) -> None:
         """Start every worker now, so the first checks do not pay for start-up."""
