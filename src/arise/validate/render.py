@@ -8,7 +8,7 @@ import tempfile
 from typing import Any
 
 from arise.validate.facts import footprint
-from arise.validate.types import AgentTrace
+from arise.validate.types import AgentTrace, Collision
 
 _COLORS = {"ego": "#d62728", "Pedestrian": "#2ca02c", "Bicycle": "#9467bd",
            "Motorcycle": "#8c564b", "Truck": "#ff7f0e"}
@@ -23,7 +23,8 @@ def _draw_region(ax: Any, geometry: Any, **style: Any) -> None:
         ax.fill(x, y, **style)
 
 
-def draw_scene(network: Any, agents: list[AgentTrace], path: str, title: str = "") -> str:
+def draw_scene(network: Any, agents: list[AgentTrace], path: str, title: str = "",
+               collisions: list[Collision] | None = None) -> str:
     """Write a PNG of the road network around the agents, with their paths; atomically."""
     import matplotlib
 
@@ -38,7 +39,8 @@ def draw_scene(network: Any, agents: list[AgentTrace], path: str, title: str = "
 
     fig, ax = plt.subplots(figsize=(8, 8), dpi=100)
     if network is not None:
-        for region, color in ((network.sidewalkRegion, "#c6dbef"),
+        for region, color in ((network.shoulderRegion, "#dddddd"),
+                              (network.sidewalkRegion, "#c6dbef"),
                               (network.drivableRegion, "#bdbdbd"),
                               (network.intersectionRegion, "#a8a8a8")):
             polygons = getattr(region, "polygons", None)
@@ -55,7 +57,7 @@ def draw_scene(network: Any, agents: list[AgentTrace], path: str, title: str = "
             continue
         x = [p.x for p in agent.trajectory]
         y = [p.y for p in agent.trajectory]
-        ax.plot(x, y, color=color, linewidth=1.5)
+        ax.plot(x, y, color=color, linewidth=1.5, label=f"{agent.name} ({agent.kind})")
         start = footprint(agent.trajectory[0], agent.width, agent.length)
         fx, fy = start.exterior.xy
         ax.fill(fx, fy, color=color, alpha=0.9)
@@ -65,6 +67,15 @@ def draw_scene(network: Any, agents: list[AgentTrace], path: str, title: str = "
         first = agent.trajectory[0]
         ax.annotate(agent.name, (first.x, first.y), fontsize=8,
                     xytext=(4 * math.cos(0.5), 4), textcoords="offset points")
+    by_name = {agent.name: agent for agent in agents}
+    for collision in collisions or []:
+        agent = by_name.get(collision.first)
+        if agent and collision.step < len(agent.trajectory):
+            point = agent.trajectory[collision.step]
+            ax.plot(point.x, point.y, marker="X", color="black", markersize=12,
+                    label=f"contact {collision.first}-{collision.second} at {collision.time:g}s")
+    if agents:
+        ax.legend(loc="upper right", fontsize=7, framealpha=0.8)
     ax.set_xlim(window.bounds[0], window.bounds[2])
     ax.set_ylim(window.bounds[1], window.bounds[3])
     ax.set_aspect("equal")

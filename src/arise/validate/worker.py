@@ -414,7 +414,8 @@ def _run_stages(path: str, text: str, info: ScriptInfo, options: CheckOptions,
 
             title = f"{Path(path).name} on {map_choice.name if map_choice else '?'}"
             result.png = draw_scene(getattr(scene.workspace, "network", None),
-                                    result.simulation.agents, options.png, title)
+                                    result.simulation.agents, options.png, title,
+                                    result.simulation.collisions)
             timings["png"] = round(time.perf_counter() - started, 3)
         simulator.destroy()
         return

@@ -24,6 +24,7 @@ from arise.validate.worldmodel.weather import check_weather
 MAX_ACCELERATION = 5.6  # m/s^2
 MAX_BRAKING = 6.8  # m/s^2
 DEFAULT_TIMESTEP = 0.1
+MIN_WHEELBASE = 4.0  # metres
 AUTOPILOT_LOOKAHEAD_MIN = 5.0  # metres
 AUTOPILOT_GAP = 8.0  # metres kept to whatever is ahead
 
@@ -121,7 +122,9 @@ class OfflineCarlaSimulation(DrivingSimulation):
         obj.speed = abs(signed)
         steer = max(-1.0, min(1.0, obj.steer or 0))
         if steer:
-            wheelbase = max(obj.length, 1.0)
+            # Controllers are tuned for cars: short vehicles (bikes) steer with a car's
+            # wheelbase, or their yaw rate doubles and lane following oscillates.
+            wheelbase = max(obj.length, MIN_WHEELBASE)
             obj.angularSpeed = -signed * math.sin(steer * math.pi / 2) / wheelbase
         else:
             obj.angularSpeed = 0
