@@ -91,3 +91,17 @@ def test_missing_model_says_how_to_get_it(tmp_path: Path, monkeypatch: pytest.Mo
     assert "arise llm install-model" in message and "ARISE_MODEL_PATH" in message
     with pytest.raises(ModelNotInstalled, match="no model file at .*other.gguf"):
         get_provider("local", cache=False, model_path=str(tmp_path / "other.gguf"))
+
+
+def test_cli_ask_uses_the_cache_unless_told_not_to(model_path: Path) -> None:
+    runner = CliRunner()
+    question = ["ask", "Which Python keyword defines a function? One word.", "--max-tokens", "4"]
+    first = runner.invoke(app, question)
+    second = runner.invoke(app, question)
+    third = runner.invoke(app, [*question, "--no-cache"])
+    for result in (first, second, third):
+        assert result.exit_code == 0, result.output
+        assert "def" in result.stdout
+    assert "(cache)" not in first.stderr
+    assert "(cache)" in second.stderr
+    assert "(cache)" not in third.stderr

@@ -104,6 +104,46 @@ def ping(
     )
 
 
+@app.command()
+@one_line_errors
+def ask(
+    prompt: Annotated[str, typer.Argument(help="The user message.")],
+    provider: ProviderOpt = None,
+    system_prompt: Annotated[str | None, typer.Option("--system", help="A system message.")] = None,
+    model: Annotated[str | None, typer.Option(help="Model name (hosted) or id.")] = None,
+    base_url: Annotated[str | None, typer.Option(help="OpenAI-compatible base URL.")] = None,
+    max_tokens: Annotated[int, typer.Option(help="Longest answer.")] = 256,
+    temperature: Annotated[float, typer.Option(help="0 = greedy.")] = 0.0,
+    seed: Annotated[int | None, typer.Option(help="Sampling seed (temperature > 0).")] = None,
+    no_cache: Annotated[bool, typer.Option("--no-cache", help="Skip the response cache.")] = False,
+    record: Annotated[Path | None, typer.Option(help="Append the call to this cassette.")] = None,
+    replay: Annotated[Path | None, typer.Option(help="Answer from this cassette.")] = None,
+) -> None:
+    """Send one prompt and print the answer; usage goes to stderr."""
+    from arise.llm.registry import get_provider
+    from arise.llm.types import system, user
+
+    llm = get_provider(
+        provider,
+        cache=False if no_cache else None,
+        record=record,
+        replay=replay,
+        model=model,
+        base_url=base_url,
+    )
+    messages = ([system(system_prompt)] if system_prompt else []) + [user(prompt)]
+    with llm:
+        reply = llm.complete(messages, max_tokens=max_tokens, temperature=temperature, seed=seed)
+    out.print(reply.text, highlight=False, markup=False)
+    u = reply.usage
+    source = "cache" if reply.cached else reply.model
+    err.print(
+        f"[dim]{llm.name} ({source}): {reply.latency:.2f} s, "
+        f"{u.prompt_tokens} prompt + {u.completion_tokens} completion tokens[/dim]",
+        highlight=False,
+    )
+
+
 @app.command("install-model")
 @one_line_errors
 def install_model(
