@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import math
 import os
 import tempfile
 from typing import Any
@@ -66,12 +65,12 @@ def draw_scene(network: Any, agents: list[AgentTrace], path: str, title: str = "
         ax.plot(ex, ey, color=color, linewidth=1)
         first = agent.trajectory[0]
         ax.annotate(agent.name, (first.x, first.y), fontsize=8,
-                    xytext=(4 * math.cos(0.5), 4), textcoords="offset points")
+                    xytext=(4, 4), textcoords="offset points")
     by_name = {agent.name: agent for agent in agents}
     for collision in collisions or []:
-        agent = by_name.get(collision.first)
-        if agent and collision.step < len(agent.trajectory):
-            point = agent.trajectory[collision.step]
+        hit = by_name.get(collision.first)
+        if hit is not None and collision.step < len(hit.trajectory):
+            point = hit.trajectory[collision.step]
             ax.plot(point.x, point.y, marker="X", color="black", markersize=12,
                     label=f"contact {collision.first}-{collision.second} at {collision.time:g}s")
     if agents:
