@@ -1,0 +1,1 @@
+"""The generator: description -> ScenarioSpec -> retrieved snippets -> script -> test and repair."""
