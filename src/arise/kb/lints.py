@@ -1,0 +1,200 @@
+"""Static rules every entry keeps, checked without running Scenic.
+
+They catch what the validator cannot see from one composed script: Scenic 2 forms that
+happen to parse, params read without being declared by the same snippet, an interface
+(`defines`, `needs`, placeholders) that does not match the code, and names the assembler
+relies on.
+"""
+
+from __future__ import annotations
+
+import ast
+import re
+from collections.abc import Iterable
+from dataclasses import dataclass
+
+from arise.kb.schema import PLACEHOLDER_PATTERN, Component, Entry
+
+OBJECT_CLASSES = (
+    "Car", "NPCCar", "Truck", "Van", "Bus", "Motorcycle", "Bicycle", "Pedestrian", "Object",
+    "Point", "OrientedPoint", "Prop", "Trash", "Cone", "Debris", "VendingMachine", "Chair",
+    "BusStop", "Advertisement", "Garbage", "Container", "Table", "Barrier", "PlantPot",
+    "Mailbox", "Gnome", "CreasedBox", "Case", "Box", "Bench", "Barrel", "ATM", "Kiosk",
+    "IronPlate", "TrafficWarning", r"\{\{ADVERSARY_CLASS\}\}",
+)
+SPECIFIERS = ("at", "on", "in", "ahead", "behind", "left", "right", "following", "facing",
+              "with", "offset", "beyond", "visible", "not", "apparently", "contained")
+# `Car at spot`, `ego = Car`, ... without `new`: Scenic 2 object creation.
+SCENIC2_CREATION = re.compile(
+    r"(?<![\w.])(?<!new )(" + "|".join(OBJECT_CLASSES) + r")(?=\s+(?:" + "|".join(SPECIFIERS)
+    + r")\b|\s*(?:,\s*with\b|$))", re.M)
+SCENIC2_FORMS = {
+    re.compile(r"^\s*import\s+scenic\.simulators\.carla\.(actions|behaviors)\b", re.M):
+        "imports CARLA actions/behaviors by hand (Scenic 2 style; the model brings them)",
+    re.compile(r"^\s*model\s", re.M): "has a `model` line: only the HEADER names the model",
+    re.compile(r"^\s*param\s+(map|carla_map)\b", re.M): "sets the map: only the HEADER does",
+}
+PARAM_DECL = re.compile(r"^\s*param\s+([A-Za-z_]\w*)\s*=", re.M)
+PARAM_READ = re.compile(r"\bglobalParameters\.([A-Za-z_]\w*)")
+TOP_ASSIGN = re.compile(r"^([A-Za-z_]\w*)\s*(?::[^=]*)?=(?!=)", re.M)
+TOP_DEF = re.compile(r"^(?:behavior|monitor|def|scenario)\s+([A-Za-z_]\w*)\s*\(", re.M)
+ADVERSARY_BEHAVIOR = re.compile(r"^behavior\s+AdversaryBehavior\s*\(\s*\)\s*:", re.M)
+ADVERSARY_OBJECT = re.compile(r"^adversary\s*=\s*new\s+\{\{ADVERSARY_CLASS\}\}", re.M)
+USES_ADVERSARY_BEHAVIOR = re.compile(r"with\s+behavior\s+AdversaryBehavior\s*\(\s*\)")
+
+
+@dataclass(frozen=True)
+class LintProblem:
+    entry: str
+    message: str
+
+    def __str__(self) -> str:
+        return f"{self.entry}: {self.message}"
+
+
+def _code_only(snippet: str) -> str:
+    """The snippet without comments and string literals, so words in them do not count."""
+    without_strings = re.sub(r"('[^'\n]*'|\"[^\"\n]*\")", "''", snippet)
+    return re.sub(r"#[^\n]*", "", without_strings)
+
+
+def top_level_names(snippet: str) -> set[str]:
+    """Names the snippet defines at top level (assignments, behaviors, functions)."""
+    code = _code_only(snippet)
+    names = set(TOP_ASSIGN.findall(code)) | set(TOP_DEF.findall(code))
+    return names - {"param"}
+
+
+def _scenic2(entry: Entry) -> list[str]:
+    code = _code_only(entry.snippet)
+    found = []
+    for match in SCENIC2_CREATION.finditer(code):
+        line = code[:match.start()].count("\n") + 1
+        found.append(f"Scenic 2 object creation without `new` at snippet line {line} "
+                     f"({match.group(1)})")
+    found += [message for pattern, message in SCENIC2_FORMS.items()
+              if pattern.search(entry.snippet)]
+    return found
+
+
+def _params(entry: Entry) -> list[str]:
+    code = _code_only(entry.snippet)
+    declared = PARAM_DECL.findall(code)
+    found = []
+    allowed_plain = {"weather"} if entry.component is Component.WEATHER else set()
+    for name in declared:
+        if name not in allowed_plain and not name.startswith("OPT_"):
+            found.append(f"declares param {name}: tunables are named OPT_*")
+    opt_declared = {name for name in declared if name.startswith("OPT_")}
+    for name in sorted(set(PARAM_READ.findall(code)) - opt_declared):
+        found.append(f"reads globalParameters.{name} but does not declare `param {name}`")
+    for line in code.splitlines():
+        if re.search(r"(?<![\w.])OPT_[A-Z0-9_]+\b", line) and not line.lstrip().startswith(
+                "param ") and not re.search(r"globalParameters\.OPT_", line):
+            found.append(f"reads an OPT_ param without globalParameters: {line.strip()!r}")
+    if set(entry.params) != opt_declared:
+        found.append(f"params: lists {sorted(entry.params)} but the snippet declares "
+                     f"{sorted(opt_declared)}")
+    return found
+
+
+def _interface(entry: Entry) -> list[str]:
+    found = []
+    code = _code_only(entry.snippet)
+    names = top_level_names(entry.snippet)
+    for name in entry.defines:
+        if name not in names:
+            found.append(f"defines: lists {name}, which the snippet does not define")
+    undeclared = sorted(names - set(entry.defines))
+    if undeclared:
+        found.append(f"defines: the snippet also defines {', '.join(undeclared)}; list them")
+    for name in entry.needs:
+        if not re.search(rf"(?<![\w.]){re.escape(name)}\b", code):
+            found.append(f"needs: lists {name}, which the snippet does not use")
+    used = set(PLACEHOLDER_PATTERN.findall(entry.snippet))
+    if used != set(entry.placeholders):
+        found.append(f"placeholders: lists {sorted(entry.placeholders)} but the snippet uses "
+                     f"{sorted(used)}")
+    if re.search(r"\{\{(?![A-Z][A-Z0-9_]*\}\})", entry.snippet):
+        found.append("has a malformed {{placeholder}}")
+    return found
+
+
+def _assembler_names(entry: Entry) -> list[str]:
+    found = []
+    snippet = entry.snippet
+    if entry.component is Component.BEHAVIOR:
+        if not ADVERSARY_BEHAVIOR.search(snippet):
+            found.append("must define `behavior AdversaryBehavior():` (no parameters; read "
+                         "routes and lanes from the names in `needs`)")
+        if "AdversaryBehavior" not in entry.defines:
+            found.append("defines: must list AdversaryBehavior")
+    elif entry.component is Component.SPAWN:
+        if not ADVERSARY_OBJECT.search(snippet):
+            found.append("must create `adversary = new {{ADVERSARY_CLASS}} ...`")
+        if not USES_ADVERSARY_BEHAVIOR.search(snippet):
+            found.append("the adversary must get `with behavior AdversaryBehavior()`")
+    elif entry.component is Component.GEOMETRY:
+        for name in ("ego", "egoStart"):
+            if name not in entry.defines:
+                found.append(f"defines: a geometry entry must define {name}")
+        if not re.search(r"^ego\s*=\s*new\s+Car\b", snippet, re.M):
+            found.append("must create the ego as `ego = new Car ...`")
+    elif entry.component is Component.WEATHER:
+        found += _weather(snippet)
+    if entry.component is not Component.BEHAVIOR and ADVERSARY_BEHAVIOR.search(snippet):
+        found.append("only behavior entries define AdversaryBehavior")
+    if entry.component not in (Component.GEOMETRY,) and "ego" in entry.defines:
+        found.append("only geometry entries define ego")
+    if entry.component is not Component.SPAWN and "adversary" in entry.defines:
+        found.append("only spawn entries define adversary")
+    if not entry.id.startswith(entry.component.value + "."):
+        found.append(f"id should start with '{entry.component.value}.'")
+    return found
+
+
+def _weather(snippet: str) -> list[str]:
+    from arise.validate.worldmodel.weather import WeatherError, check_weather
+
+    match = re.match(r"^\s*param\s+weather\s*=\s*(.+?)\s*$", snippet.strip(), re.S)
+    if not match:
+        return ["a weather snippet is one line: `param weather = <preset or dict>`"]
+    try:
+        value = ast.literal_eval(match.group(1))
+    except (ValueError, SyntaxError):
+        return ["the weather value must be a preset name or a dict of numbers"]
+    try:
+        check_weather(value)
+    except WeatherError as error:
+        return [str(error)]
+    return []
+
+
+def lint_entry(entry: Entry) -> list[LintProblem]:
+    """Everything wrong with one entry on its own."""
+    messages = _scenic2(entry) + _params(entry) + _interface(entry) + _assembler_names(entry)
+    return [LintProblem(entry.id, message) for message in messages]
+
+
+def lint_needs(entries: Iterable[Entry]) -> list[LintProblem]:
+    """Names an entry uses that another entry defines but that it does not list in needs."""
+    entries = list(entries)
+    vocabulary: dict[str, str] = {}
+    for entry in entries:
+        for name in entry.defines:
+            vocabulary.setdefault(name, entry.id)
+    problems = []
+    for entry in entries:
+        code = _code_only(entry.snippet)
+        own = set(entry.defines) | set(entry.needs) | {"ego", "AdversaryBehavior"}
+        for name in sorted(set(vocabulary) - own):
+            if re.search(rf"(?<![\w.]){re.escape(name)}\b(?!\s*=[^=])", code):
+                problems.append(LintProblem(entry.id, f"uses {name} (defined by "
+                                            f"{vocabulary[name]}) without listing it in needs"))
+    return problems
+
+
+def lint_all(entries: Iterable[Entry]) -> list[LintProblem]:
+    entries = list(entries)
+    problems = [problem for entry in entries for problem in lint_entry(entry)]
+    return problems + lint_needs(entries)

@@ -1,0 +1,138 @@
+"""What a knowledge-base entry is: a validated description-snippet pair with its interface.
+
+An entry states what it defines and needs, so the assembler can tell which entries compose
+without reading their code, and the validator can prove every entry runs.
+"""
+
+from __future__ import annotations
+
+import re
+from enum import StrEnum
+
+from pydantic import BaseModel, ConfigDict, Field, field_validator
+
+
+class Component(StrEnum):
+    """The six kinds of snippet; their order is the order of the script's sections."""
+
+    WEATHER = "weather"
+    BEHAVIOR = "behavior"
+    GEOMETRY = "geometry"
+    SPAWN = "spawn"
+    MISC = "misc"
+    REQUIREMENTS = "requirements"
+
+    @property
+    def section(self) -> str:
+        """The `# BEGIN NAME` section this component's snippets go into."""
+        return self.value.upper()
+
+
+COMPONENT_ORDER: tuple[Component, ...] = tuple(Component)
+
+ADVERSARY_CLASSES: tuple[str, ...] = ("Car", "Truck", "Motorcycle", "Bicycle", "Pedestrian")
+VEHICLE_CLASSES: tuple[str, ...] = ("Car", "Truck", "Motorcycle", "Bicycle")
+
+MAP_FEATURES: tuple[str, ...] = ("straight", "multilane", "sidewalk", "intersection4",
+                                 "tjunction", "signalized", "highway", "curve")
+
+ID_PATTERN = re.compile(r"^[a-z][a-z0-9_]*(\.[a-z0-9_]+)*$")
+NAME_PATTERN = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
+PLACEHOLDER_PATTERN = re.compile(r"\{\{([A-Z][A-Z0-9_]*)\}\}")
+
+
+class Entry(BaseModel):
+    """One description-snippet pair of one component."""
+
+    model_config = ConfigDict(extra="forbid", frozen=True)
+
+    id: str = Field(description="unique id, lower_snake_case, e.g. 'behavior.sudden_brake'")
+    component: Component
+    descriptions: list[str] = Field(min_length=1,
+                                    description="natural-language descriptions (paraphrases)")
+    snippet: str = Field(min_length=1, description="Scenic 3 code of this entry's section")
+    defines: list[str] = Field(default_factory=list,
+                               description="global names the snippet defines")
+    needs: list[str] = Field(default_factory=list,
+                             description="names the snippet uses that other entries define")
+    params: list[str] = Field(default_factory=list,
+                              description="the OPT_* global parameters the snippet declares")
+    placeholders: list[str] = Field(default_factory=list,
+                                    description="{{NAME}} placeholders the assembler fills")
+    adversaries: list[str] = Field(default_factory=list,
+                                   description="adversary classes it suits (empty: any)")
+    map_features: list[str] = Field(default_factory=list,
+                                    description="map features the snippet needs")
+    tags: list[str] = Field(default_factory=list)
+    companions: list[str] = Field(
+        default_factory=list,
+        description="ids of entries it is known to compose well with (tried first when "
+                    "validating; a hint for the generator)")
+    source: str | None = Field(default=None, description="file the entry came from (set "
+                                                         "by the loader)")
+
+    @field_validator("id")
+    @classmethod
+    def _id_shape(cls, value: str) -> str:
+        if not ID_PATTERN.match(value):
+            raise ValueError("must be lower_snake_case words joined by dots, e.g. "
+                             "'behavior.sudden_brake'")
+        return value
+
+    @field_validator("descriptions")
+    @classmethod
+    def _descriptions_not_blank(cls, value: list[str]) -> list[str]:
+        if any(not text.strip() for text in value):
+            raise ValueError("descriptions must not be blank")
+        return [" ".join(text.split()) for text in value]
+
+    @field_validator("defines", "needs")
+    @classmethod
+    def _names(cls, value: list[str]) -> list[str]:
+        bad = [name for name in value if not NAME_PATTERN.match(name)]
+        if bad:
+            raise ValueError(f"not a Scenic name: {', '.join(bad)}")
+        return value
+
+    @field_validator("params")
+    @classmethod
+    def _params(cls, value: list[str]) -> list[str]:
+        bad = [name for name in value if not re.match(r"^OPT_[A-Z0-9_]+$", name)]
+        if bad:
+            raise ValueError(f"params must be named OPT_<UPPER_CASE>: {', '.join(bad)}")
+        return value
+
+    @field_validator("placeholders")
+    @classmethod
+    def _placeholders(cls, value: list[str]) -> list[str]:
+        bad = [name for name in value if not re.match(r"^[A-Z][A-Z0-9_]*$", name)]
+        if bad:
+            raise ValueError(f"placeholders are UPPER_CASE names: {', '.join(bad)}")
+        return value
+
+    @field_validator("adversaries")
+    @classmethod
+    def _adversaries(cls, value: list[str]) -> list[str]:
+        bad = [name for name in value if name not in ADVERSARY_CLASSES]
+        if bad:
+            raise ValueError(f"unknown adversary class {', '.join(bad)}; choose from "
+                             f"{', '.join(ADVERSARY_CLASSES)}")
+        return value
+
+    @field_validator("map_features")
+    @classmethod
+    def _features(cls, value: list[str]) -> list[str]:
+        bad = [name for name in value if name not in MAP_FEATURES]
+        if bad:
+            raise ValueError(f"unknown map feature {', '.join(bad)}; choose from "
+                             f"{', '.join(MAP_FEATURES)}")
+        return value
+
+    def suits(self, adversary_class: str) -> bool:
+        """True when this entry works with that adversary class."""
+        return not self.adversaries or adversary_class in self.adversaries
+
+    @property
+    def search_text(self) -> str:
+        """What retrieval indexes: the descriptions and tags (never the code)."""
+        return " ".join([*self.descriptions, *(tag.replace("_", " ") for tag in self.tags)])
