@@ -194,3 +194,16 @@ def test_cli_info_shows_key_state_not_values(tmp_path: Path) -> None:
     assert result.returncode == 0, result.stderr
     assert "key OPENAI_API_KEY: set" in result.stdout
     assert env_key not in result.stdout
+
+
+def test_structured_style_and_kind_are_checked(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    write_config(
+        tmp_path, '[providers.gpu]\nkind = "openai"\nstructured = "jsonschema"\n', monkeypatch
+    )
+    with pytest.raises(LLMError, match="structured must be one of json_schema"):
+        load_settings()
+    write_config(tmp_path, '[providers.local]\nkind = "cloud"\n', monkeypatch)
+    with pytest.raises(LLMError, match="kind must be one of"):
+        load_settings()

@@ -12,11 +12,11 @@ import os
 import tomllib
 from dataclasses import dataclass, field, fields, replace
 from pathlib import Path
-from typing import Any, Literal
+from typing import Any, Literal, get_args
 
 import platformdirs
 
-from arise.llm.types import Capabilities, LLMError, MissingCredentials
+from arise.llm.types import Capabilities, LLMError, MissingCredentials, StructuredStyle
 
 Kind = Literal["openai", "anthropic", "local", "replay"]
 
@@ -155,6 +155,8 @@ PRESETS: dict[str, ProviderSettings] = {
 }
 
 _FIELD_TYPES = {f.name: f.type for f in fields(ProviderSettings)}
+_STRUCTURED_STYLES = get_args(StructuredStyle)
+_KINDS = get_args(Kind)
 
 
 @dataclass(frozen=True)
@@ -219,6 +221,10 @@ def _apply(profile: ProviderSettings, values: dict[str, Any], where: str) -> Pro
         if key == "name" or key not in _FIELD_TYPES:
             raise LLMError(f"{where}: unknown setting {raw_key!r}")
         updates[key] = _coerce(key, value, where)
+    choices = {"structured": _STRUCTURED_STYLES, "kind": _KINDS}
+    for key, allowed in choices.items():
+        if key in updates and updates[key] not in allowed:
+            raise LLMError(f"{where}: {key} must be one of {', '.join(allowed)}")
     return replace(profile, **updates)
 
 
