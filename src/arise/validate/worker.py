@@ -45,7 +45,10 @@ from arise.validate.types import (
 Emit = Callable[[dict[str, Any]], None]
 OFFLINE_MODEL = "arise.validate.worldmodel.model"
 STUCK_BEHAVIOR_SECONDS = 3  # a behavior step this long without an action is a bug
-SOFT_TIMEOUT_GRACE = 2.0  # seconds between our own interrupt and the parent's kill
+SOFT_TIMEOUT_GRACE = 2.0
+# Parsed maps kept per worker, budgeted by OpenDRIVE file size: a CARLA town (1-3.5 MB of
+# XML) costs ~30-100 MB parsed; our own maps (< 40 kB) almost nothing.
+NETWORK_CACHE_BYTES = 4_000_000  # seconds between our own interrupt and the parent's kill
 
 
 class CheckTimeout(Exception):
@@ -80,10 +83,16 @@ def _warm_up() -> None:
         except OSError:
             stamp = None
         key = (resolved, stamp, repr(sorted(kwargs.items())))
-        if key not in _NETWORK_CACHE:
-            _NETWORK_CACHE[key] = original(cls, path, useCache=useCache,
-                                           writeCache=writeCache, **kwargs)
-        return _NETWORK_CACHE[key]
+        entry = _NETWORK_CACHE.pop(key, None)
+        if entry is None:
+            size = os.path.getsize(resolved) if stamp is not None else 0
+            entry = (original(cls, path, useCache=useCache, writeCache=writeCache, **kwargs),
+                     size)
+        _NETWORK_CACHE[key] = entry  # most recently used last
+        while len(_NETWORK_CACHE) > 1 and sum(
+                size for _, size in _NETWORK_CACHE.values()) > NETWORK_CACHE_BYTES:
+            del _NETWORK_CACHE[next(iter(_NETWORK_CACHE))]
+        return entry[0]
 
     Network.fromFile = classmethod(cached_from_file)
 
