@@ -40,6 +40,8 @@ TOP_ASSIGN = re.compile(r"^([A-Za-z_]\w*)\s*(?::[^=]*)?=(?!=)", re.M)
 TOP_DEF = re.compile(r"^(?:behavior|monitor|def|scenario)\s+([A-Za-z_]\w*)\s*\(", re.M)
 ADVERSARY_BEHAVIOR = re.compile(r"^behavior\s+AdversaryBehavior\s*\(\s*\)\s*:", re.M)
 ADVERSARY_OBJECT = re.compile(r"^adversary\s*=\s*new\s+\{\{ADVERSARY_CLASS\}\}", re.M)
+# Every composed script has these, so entries may use them without listing them in needs.
+ALWAYS_DEFINED = frozenset({"ego", "adversary", "AdversaryBehavior"})
 USES_ADVERSARY_BEHAVIOR = re.compile(r"with\s+behavior\s+AdversaryBehavior\s*\(\s*\)")
 
 
@@ -89,6 +91,9 @@ def _params(entry: Entry) -> list[str]:
     for name in sorted(set(PARAM_READ.findall(code)) - opt_declared):
         found.append(f"reads globalParameters.{name} but does not declare `param {name}`")
     for line in code.splitlines():
+        if re.match(r"\s*require\b", line) and "globalParameters" in line:
+            found.append("a `require` condition reads globalParameters, which Scenic 3.1 "
+                         f"cannot resolve when it checks the scene: {line.strip()!r}")
         if re.search(r"(?<![\w.])OPT_[A-Z0-9_]+\b", line) and not line.lstrip().startswith(
                 "param ") and not re.search(r"globalParameters\.OPT_", line):
             found.append(f"reads an OPT_ param without globalParameters: {line.strip()!r}")
@@ -186,7 +191,7 @@ def lint_needs(entries: Iterable[Entry]) -> list[LintProblem]:
     problems = []
     for entry in entries:
         code = _code_only(entry.snippet)
-        own = set(entry.defines) | set(entry.needs) | {"ego", "AdversaryBehavior"}
+        own = set(entry.defines) | set(entry.needs) | ALWAYS_DEFINED
         for name in sorted(set(vocabulary) - own):
             if re.search(rf"(?<![\w.]){re.escape(name)}\b(?!\s*=[^=])", code):
                 problems.append(LintProblem(entry.id, f"uses {name} (defined by "

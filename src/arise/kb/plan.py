@@ -126,13 +126,17 @@ class _Planner:
         """Add an attachable entry to the best script it fits; False if none."""
         limit = ATTACH_LIMITS[entry.component]
 
+        def companions(c: Composition) -> int:
+            return sum(1 for e in c.entries if e.id in entry.companions or
+                       entry.id in e.companions)
+
         def rank(c: Composition) -> tuple[int, int]:
-            companions = sum(1 for e in c.entries if e.id in entry.companions or
-                             entry.id in e.companions)
             load = sum(1 for e in c.entries if e.component is entry.component)
-            return (-companions, load)
+            return (-companions(c), load)
 
         for composition in sorted(self.compositions, key=rank):
+            if entry.companions and not companions(composition):
+                continue  # written for its companions: prove it with them
             if sum(1 for e in composition.entries if e.component is entry.component) >= limit:
                 continue
             candidate = [*composition.entries, entry]
@@ -171,14 +175,20 @@ def plan_validation(entries: Sequence[Entry], maps: Mapping[str, Iterable[str]],
             if planner.add_core(entry) is not None:
                 break
     for component in ATTACH_LIMITS:
-        for entry in planner.by_component[component]:
+        # Entries written for particular companions go first, before others fill the slots.
+        ordered = sorted(planner.by_component[component], key=lambda e: not e.companions)
+        for entry in ordered:
             if entry.id not in wanted:
                 continue
             if planner.attach(entry):
                 continue
-            # Every script is full or unsuitable: open a new one from a fitting core.
+            # Every script is full or unsuitable: open a new one from a fitting core,
+            # built around a companion when the entry names one.
             fitted = False
-            for behavior in planner.by_component[Component.BEHAVIOR]:
+            core_ids = {e.id for c in core_components for e in planner.by_component[c]}
+            seeds = [planner_entry for planner_entry in entries
+                     if planner_entry.id in entry.companions and planner_entry.id in core_ids]
+            for behavior in seeds or planner.by_component[Component.BEHAVIOR]:
                 composition = planner.add_core(behavior)
                 if composition is None:
                     continue
