@@ -1,0 +1,83 @@
+"""Module A: a description becomes a validated ScenarioSpec (or a clear error value)."""
+
+from __future__ import annotations
+
+import json
+import re
+from dataclasses import dataclass, field
+
+from arise.generate.spec import EgoManeuver, ScenarioSpec
+from arise.llm.base import BaseProvider
+from arise.llm.types import Message
+from arise.prompts import load, load_jsonl
+
+DRIVING_WORDS = re.compile(
+    r"\b(ego|car|cars|vehicle|vehicles|truck|van|bus|motorcycl\w*|motorbike|bike|bicycle|"
+    r"cyclist|pedestrian|walker|person|child|people|road|street|lane|lanes|intersection|"
+    r"junction|crossroads|crossing|highway|motorway|traffic|drive\w*|turn\w*|overtak\w*|"
+    r"pass\w*|brak\w*|park\w*|red light|signal)\b", re.I)
+MAX_DESCRIPTION_CHARS = 2000
+
+
+@dataclass
+class Extraction:
+    """A spec, or why there is none; plus what the description contradicts itself on."""
+
+    spec: ScenarioSpec | None = None
+    error: str | None = None
+    contradictions: list[str] = field(default_factory=list)
+
+
+def check_description(description: str) -> str | None:
+    """A reason to refuse the description before any model call, or None."""
+    text = description.strip()
+    if not text:
+        return "the description is empty: describe the ego, the adversary and what happens"
+    if len(text) > MAX_DESCRIPTION_CHARS:
+        return (f"the description is {len(text)} characters long; keep it under "
+                f"{MAX_DESCRIPTION_CHARS} (one scenario per description)")
+    if not DRIVING_WORDS.search(text):
+        return ("this does not look like a driving scenario: mention the road users "
+                "(ego car, pedestrian, cyclist, ...) and what happens on the road")
+    return None
+
+
+def find_contradictions(description: str, spec: ScenarioSpec | None = None) -> list[str]:
+    """Statements in the description that cannot all hold, and spec fields that disagree."""
+    text = description.lower()
+    found = []
+    left = bool(re.search(r"\b(turns?|turning) left\b|\bleft turn\b", text))
+    right = bool(re.search(r"\b(turns?|turning) right\b|\bright turn\b", text))
+    if left and right and "ego" in text:
+        found.append("the description has the ego turn both left and right")
+    if re.search(r"\bhighway\b|\bmotorway\b", text) and re.search(r"\bpedestrian|sidewalk\b",
+                                                                  text):
+        found.append("pedestrians and sidewalks do not belong on a highway")
+    if spec is not None:
+        if left and not right and spec.ego_maneuver is EgoManeuver.TURN_RIGHT:
+            found.append("the description says left, the extracted maneuver is turn_right")
+        if right and not left and spec.ego_maneuver is EgoManeuver.TURN_LEFT:
+            found.append("the description says right, the extracted maneuver is turn_left")
+    return found
+
+
+def extraction_messages(description: str) -> list[Message]:
+    messages = [Message("system", load("extract_system.md"))]
+    for example in load_jsonl("extract_examples.jsonl"):
+        messages.append(Message("user", example["description"]))
+        messages.append(Message("assistant", json.dumps(example["spec"])))
+    messages.append(Message("user", description.strip()))
+    return messages
+
+
+def extract_spec(description: str, provider: BaseProvider, *, temperature: float = 0.0,
+                 seed: int | None = None) -> Extraction:
+    """Module A. Provider failures propagate (the caller records them); bad input does not."""
+    refusal = check_description(description)
+    if refusal:
+        return Extraction(error=refusal)
+    completion = provider.complete(extraction_messages(description), temperature=temperature,
+                                   max_tokens=600, schema=ScenarioSpec, seed=seed)
+    spec = completion.parsed
+    assert isinstance(spec, ScenarioSpec)
+    return Extraction(spec=spec, contradictions=find_contradictions(description, spec))
