@@ -1,0 +1,84 @@
+"""Keyword evidence for the spec's enums, used to overrule a small model's guesses.
+
+The 1.5B model follows the JSON format reliably but often picks the wrong side, lane or
+road type. Where the description states these plainly ("from the left", "oncoming",
+"highway", "turns right"), the words win; where it is silent, the model's answer stands.
+"""
+
+from __future__ import annotations
+
+import re
+
+from arise.generate.spec import (
+    AdversaryType,
+    EgoManeuver,
+    RelativePosition,
+    RoadType,
+    ScenarioSpec,
+)
+
+_ADVERSARY = [
+    (AdversaryType.PEDESTRIAN, r"pedestrian|walker|person|child|kid|man|woman|jogger|people"),
+    (AdversaryType.BICYCLE, r"cyclist|bicycle|bike(?!r)|biker"),
+    (AdversaryType.MOTORCYCLE, r"motorcycl\w*|motorbike|motorcyclist|scooter|moped"),
+    (AdversaryType.TRUCK, r"truck|lorry|semi|bus"),
+    (AdversaryType.CAR, r"car|vehicle|van|suv|sedan|taxi"),
+]
+_ROAD = [
+    (RoadType.HIGHWAY, r"highway|motorway|freeway|expressway"),
+    (RoadType.T_JUNCTION, r"t-junction|t junction|t-intersection"),
+    (RoadType.INTERSECTION, r"intersection|junction|crossroads|crossing road|red light|"
+                            r"traffic light|signal|turns? (left|right)|(left|right) turn"),
+]
+_MANEUVER = [
+    (EgoManeuver.TURN_LEFT, r"ego\w*(?: \w+){0,4} (turns?|turning|makes a|performs an?"
+                            r"(?: unprotected)?) left|(?:unprotected )?left turn|unprotected left"),
+    (EgoManeuver.TURN_RIGHT, r"ego\w*(?: \w+){0,4} (turns?|turning|makes a|takes a) right|"
+                             r"right turn"),
+    (EgoManeuver.CHANGE_LANE, r"ego\w*(?: \w+){0,4} chang\w* (?:to the \w+ )?lanes?|"
+                              r"ego wants to change"),
+]
+_SPAWN = [
+    (RelativePosition.ONCOMING, r"oncoming|opposite direction|coming the other way|"
+                                r"from the opposite"),
+    (RelativePosition.CROSSING_FROM_LEFT, r"from the left(?! sidewalk)|left side of the"),
+    (RelativePosition.CROSSING_FROM_RIGHT, r"from the right(?! sidewalk)|from right"),
+    (RelativePosition.ROADSIDE_RIGHT, r"right sidewalk|parked (?:\w+ )?on the right|"
+                                      r"roadside on the right|right side of the street"),
+    (RelativePosition.ROADSIDE_LEFT, r"left sidewalk|parked (?:\w+ )?on the left"),
+    (RelativePosition.ADJACENT_LANE_LEFT, r"(?:in )?the left lane|lane to the left"),
+    (RelativePosition.ADJACENT_LANE_RIGHT, r"(?:in )?the right lane|adjacent right lane|"
+                                           r"lane to the right"),
+    (RelativePosition.BEHIND_SAME_LANE, r"from behind(?= in|,|\.| the ego)|behind the ego"),
+    (RelativePosition.AHEAD_SAME_LANE, r"ahead in (?:the )?(?:same|ego'?s?) lane|"
+                                       r"in front of the ego|ahead of the ego"),
+]
+
+
+def _first(table: list[tuple[object, str]], text: str) -> object | None:
+    for value, pattern in table:
+        if re.search(rf"\b(?:{pattern})\b", text):
+            return value
+    return None
+
+
+def apply_hints(description: str, spec: ScenarioSpec) -> tuple[ScenarioSpec, list[str]]:
+    """The spec with enums the description states plainly; and a note per change."""
+    text = description.lower()
+    changes: dict[str, object] = {}
+    for field, table in (("adversary_type", _ADVERSARY), ("road_type", _ROAD),
+                         ("ego_maneuver", _MANEUVER), ("spawn_position", _SPAWN)):
+        found = _first(table, text)
+        if found is not None and found != getattr(spec, field):
+            changes[field] = found
+    if "ego_maneuver" not in changes and spec.ego_maneuver is not EgoManeuver.GO_STRAIGHT \
+            and _first(_MANEUVER, text) is None:
+        changes["ego_maneuver"] = EgoManeuver.GO_STRAIGHT
+    road = changes.get("road_type", spec.road_type)
+    maneuver = changes.get("ego_maneuver", spec.ego_maneuver)
+    if maneuver in (EgoManeuver.TURN_LEFT, EgoManeuver.TURN_RIGHT) and road in (
+            RoadType.STRAIGHT, RoadType.HIGHWAY):
+        changes["road_type"] = RoadType.INTERSECTION
+    notes = [f"{name}: {getattr(spec, name)} -> {value} (stated in the description)"
+             for name, value in changes.items()]
+    return spec.model_copy(update=changes), notes
