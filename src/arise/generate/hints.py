@@ -8,6 +8,7 @@ road type. Where the description states these plainly ("from the left", "oncomin
 from __future__ import annotations
 
 import re
+from collections.abc import Sequence
 
 from arise.generate.spec import (
     AdversaryType,
@@ -55,7 +56,7 @@ _SPAWN = [
 ]
 
 
-def _first(table: list[tuple[object, str]], text: str) -> object | None:
+def _first(table: Sequence[tuple[object, str]], text: str) -> object | None:
     for value, pattern in table:
         if re.search(rf"\b(?:{pattern})\b", text):
             return value
