@@ -9,14 +9,7 @@ from __future__ import annotations
 
 import re
 
-STOPWORDS = frozenset("""
-a an the and or but of to in on at by for from with into onto as is are was were be been
-being it its this that these those there here then than so such some any very just also
-while when where which who whom whose what how about over under up down out off again
-further once both each few more most other own same too can will would should could may
-might must do does did doing has have had having i me my we our you your he him his she her
-they them their one two
-""".split())
+STOPWORDS = frozenset(["a", "an", "the", "and", "or", "but", "of", "to", "in", "on", "at", "by", "for", "from", "with", "into", "onto", "as", "is", "are", "was", "were", "be", "been", "being", "it", "its", "this", "that", "these", "those", "there", "here", "then", "than", "so", "such", "some", "any", "very", "just", "also", "while", "when", "where", "which", "who", "whom", "whose", "what", "how", "about", "over", "under", "up", "down", "out", "off", "again", "further", "once", "both", "each", "few", "more", "most", "other", "own", "same", "too", "can", "will", "would", "should", "could", "may", "might", "must", "do", "does", "did", "doing", "has", "have", "had", "having", "i", "me", "my", "we", "our", "you", "your", "he", "him", "his", "she", "her", "they", "them", "their", "one", "two"])
 
 # One canonical term per concept, for words scenario descriptions use interchangeably.
 SYNONYMS: dict[str, str] = {
