@@ -20,6 +20,7 @@ app.command("check", help=CHECK_HELP)(check_command)
 app.command("blueprints")(blueprints_command)
 app.add_typer(maps_app, name="maps")
 app.add_typer(llm_app, name="llm")
+from arise.kb.cli import app as kb_app; app.add_typer(kb_app, name="kb")  # noqa: E402, E702, I001
 
 
 def main() -> None:

