@@ -6,6 +6,7 @@ import warnings
 
 import typer
 
+from arise.generate.cli import GENERATE_HELP, generate_command
 from arise.llm.cli import app as llm_app
 from arise.validate.cli import CHECK_HELP, blueprints_command, check_command, maps_app
 
@@ -16,6 +17,7 @@ app = typer.Typer(
     add_completion=False,
     pretty_exceptions_enable=False,
 )
+app.command("generate", help=GENERATE_HELP)(generate_command)
 app.command("check", help=CHECK_HELP)(check_command)
 app.command("blueprints")(blueprints_command)
 app.add_typer(maps_app, name="maps")

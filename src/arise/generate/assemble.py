@@ -1,0 +1,132 @@
+"""Module C: the chosen entries become one script in marked sections.
+
+A small model is good at copying and poor at writing Scenic, so entries are copied
+verbatim and the model only tunes their `OPT_*` parameters to the description (one short
+structured call); every value it proposes is checked and bounded before it is used.
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from typing import Any
+
+from pydantic import BaseModel, create_model
+
+from arise.generate.retrieve import Retrieval
+from arise.kb.compose import compose
+from arise.kb.schema import Entry
+from arise.llm.base import BaseProvider
+from arise.llm.types import Message
+from arise.prompts import load
+
+_PARAM_LINE = re.compile(r"^param\s+(OPT_[A-Z0-9_]+)\s*=\s*(.+?)\s*$", re.M)
+_NUMBER = r"-?\d+(?:\.\d+)?"
+_VALUE = re.compile(rf"^\s*(?:({_NUMBER})|Range\(\s*({_NUMBER})\s*,\s*({_NUMBER})\s*\))\s*$")
+MAX_STRETCH = 2.0  # a tuned value may be at most this factor outside the default's range
+
+
+@dataclass
+class Draft:
+    """One assembled script and what went into it."""
+
+    script: str
+    entries: list[Entry]
+    map_name: str
+    adversary_class: str
+    params: dict[str, str] = field(default_factory=dict)  # tuned values actually used
+    notes: list[str] = field(default_factory=list)
+
+
+def declared_params(entries: list[Entry]) -> dict[str, tuple[str, str]]:
+    """OPT_* name -> (default value text, id of the entry declaring it)."""
+    found: dict[str, tuple[str, str]] = {}
+    for entry in entries:
+        for name, value in _PARAM_LINE.findall(entry.snippet):
+            found.setdefault(name, (value, entry.id))
+    return found
+
+
+def _bounds(value: str) -> tuple[float, float] | None:
+    match = _VALUE.match(value)
+    if not match:
+        return None
+    if match.group(1) is not None:
+        number = float(match.group(1))
+        return number, number
+    low, high = float(match.group(2)), float(match.group(3))
+    return (low, high) if low <= high else None
+
+
+def checked_value(proposed: Any, default: str) -> str | None:
+    """The proposed value as Scenic text, if it is well-formed and near the default."""
+    text = str(proposed).strip()
+    if isinstance(proposed, (int, float)) and not isinstance(proposed, bool):
+        text = f"{proposed:g}"
+    wanted, usual = _bounds(text), _bounds(default)
+    if wanted is None or usual is None:
+        return None
+    low, high = usual
+    span_low = min(low / MAX_STRETCH, low * MAX_STRETCH)
+    span_high = max(high * MAX_STRETCH, high / MAX_STRETCH)
+    if not (span_low - 1e-9 <= wanted[0] and wanted[1] <= span_high + 1e-9):
+        return None
+    if (low >= 0) and wanted[0] < 0:
+        return None
+    return text
+
+
+def apply_params(script: str, values: Mapping[str, str]) -> str:
+    def replace(match: re.Match[str]) -> str:
+        name = match.group(1)
+        return f"param {name} = {values[name]}" if name in values else match.group(0)
+
+    return _PARAM_LINE.sub(replace, script)
+
+
+def tune_params(description: str, entries: list[Entry], provider: BaseProvider, *,
+                temperature: float = 0.0, seed: int | None = None
+                ) -> tuple[dict[str, str], list[str]]:
+    """Ask the model for OPT_* values; keep only checked ones. Returns values and notes."""
+    declared = declared_params(entries)
+    if not declared:
+        return {}, []
+    fields: dict[str, Any] = {name: (str | float, ...) for name in declared}
+    schema: type[BaseModel] = create_model("TunedParams", **fields)
+    listing = "\n".join(
+        f"- {name} (default {default}) in {entry_id}: "
+        f"{_describe(entries, entry_id)}" for name, (default, entry_id) in declared.items())
+    messages = [Message("system", load("adapt_system.md")),
+                Message("user", f"Description: {description.strip()}\n\nParameters:\n{listing}")]
+    completion = provider.complete(messages, temperature=temperature, max_tokens=300,
+                                   schema=schema, seed=seed)
+    proposed = completion.parsed.model_dump() if completion.parsed is not None else {}
+    values: dict[str, str] = {}
+    notes: list[str] = []
+    for name, (default, _) in declared.items():
+        value = checked_value(proposed.get(name), default)
+        if value is None:
+            notes.append(f"{name}: kept default {default} (model proposed {proposed.get(name)!r})")
+        elif value.replace(" ", "") != default.replace(" ", ""):
+            values[name] = value
+    return values, notes
+
+
+def _describe(entries: list[Entry], entry_id: str) -> str:
+    entry = next(e for e in entries if e.id == entry_id)
+    return entry.descriptions[0]
+
+
+def assemble(retrieval: Retrieval, adversary_class: str, description: str,
+             params: Mapping[str, str] | None = None) -> Draft:
+    """Compose the chosen entries (ComposeError if they do not fit) and apply tuned params."""
+    entries = retrieval.chosen_entries()
+    if retrieval.map_name is None:
+        from arise.kb.compose import ComposeError
+
+        raise ComposeError(["no available map has every feature the chosen entries need"])
+    script = compose(entries, adversary_class, retrieval.map_name, description=description)
+    values = dict(params or {})
+    return Draft(script=apply_params(script, values), entries=entries,
+                 map_name=retrieval.map_name, adversary_class=adversary_class, params=values)

@@ -1,0 +1,150 @@
+"""`arise generate`: descriptions in, executable Scenic scripts (and reports) out."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+from typing import Annotated, Any
+
+import typer
+from rich.console import Console
+from rich.live import Live
+from rich.text import Text
+
+from arise.generate.options import GenerateOptions, Mode
+from arise.generate.pipeline import Generation, Generator, _slug
+
+console = Console(soft_wrap=True)
+errors = Console(stderr=True, soft_wrap=True)
+
+GENERATE_HELP = """Turn traffic-scenario descriptions into executable Scenic 3 scripts.
+
+Each description goes through extraction, retrieval from the knowledge base, assembly and
+the test-and-repair loop; DIR gets scenario.scenic, report.json, scene.png and attempts/.
+
+Examples:
+
+  arise generate "The ego turns right; a pedestrian crosses from the left and stops." -o out/
+
+  arise generate --file prompts.txt -o out/ --count 3
+
+  arise generate "..." --mode single-pass --provider openai --model gpt-4o-mini
+"""
+
+
+def _read_descriptions(text: str | None, file: Path | None) -> list[tuple[str, str]]:
+    """(id, description) pairs from the argument and/or a .txt (one per line) or .jsonl file."""
+    found: list[tuple[str, str]] = []
+    if text is not None:
+        found.append((_slug(text), text))
+    if file is not None:
+        if not file.is_file():
+            raise typer.BadParameter(f"no such file: {file}", param_hint="--file")
+        for number, line in enumerate(file.read_text(encoding="utf-8").splitlines(), 1):
+            if not line.strip() or line.lstrip().startswith("#"):
+                continue
+            if file.suffix == ".jsonl":
+                try:
+                    row = json.loads(line)
+                except json.JSONDecodeError as error:
+                    raise typer.BadParameter(f"{file}:{number}: not JSON ({error.msg})",
+                                             param_hint="--file") from None
+                description = str(row.get("description", ""))
+                ident = str(row.get("id") or f"{number:03d}-{_slug(description)}")
+            else:
+                description, ident = line.strip(), f"{number:03d}-{_slug(line)}"
+            found.append((ident, description))
+    return found
+
+
+def generate_command(
+    description: Annotated[str | None, typer.Argument(help="The scenario, in words.")] = None,
+    out: Annotated[Path, typer.Option("-o", "--out", help="Output folder.")] = Path("out"),
+    file: Annotated[Path | None, typer.Option(
+        help="Descriptions, one per line (.txt) or JSON lines with 'description' (.jsonl).")]
+    = None,
+    count: Annotated[int, typer.Option(help="Runs per description.")] = 1,
+    provider: Annotated[str | None, typer.Option(help="LLM provider (see `arise llm info`).")]
+    = None,
+    model: Annotated[str | None, typer.Option(help="Model name for the provider.")] = None,
+    temperature: Annotated[float, typer.Option(help="Sampling temperature.")] = 0.0,
+    topk: Annotated[int, typer.Option(help="Snippets retrieved per component.")] = 2,
+    max_repairs: Annotated[int, typer.Option(help="Repair budget per run.")] = 10,
+    spawn_attempts: Annotated[int, typer.Option(help="Scenes tried per check.")] = 15,
+    simulator: Annotated[str, typer.Option(help="offline or carla.")] = "offline",
+    mode: Annotated[Mode, typer.Option(help="arise, single-pass or chatscene.")] = Mode.ARISE,
+    map_dir: Annotated[str | None, typer.Option(help="Extra maps (e.g. CARLA towns).")] = None,
+    seed: Annotated[int, typer.Option(help="Seed for sampling and the model.")] = 0,
+    no_cache: Annotated[bool, typer.Option("--no-cache", help="Do not use the LLM cache.")]
+    = False,
+    record: Annotated[str | None, typer.Option(help="Record LLM calls to this cassette.")]
+    = None,
+    replay: Annotated[str | None, typer.Option(help="Answer LLM calls from this cassette.")]
+    = None,
+    as_json: Annotated[bool, typer.Option("--json", help="Print the reports as JSON.")] = False,
+) -> None:
+    descriptions = _read_descriptions(description, file)
+    if not descriptions:
+        errors.print("[red]error:[/red] give a description or --file")
+        raise typer.Exit(2)
+    if simulator not in ("offline", "carla"):
+        errors.print("[red]error:[/red] --simulator must be offline or carla")
+        raise typer.Exit(2)
+    options = GenerateOptions(mode=mode, provider=provider, model=model, temperature=temperature,
+                              topk=topk, max_repairs=max_repairs, spawn_attempts=spawn_attempts,
+                              simulator=simulator, map_dir=map_dir, seed=seed,
+                              cache=False if no_cache else None, record=record, replay=replay)
+    runs: list[Generation] = []
+    single = len(descriptions) == 1 and count == 1
+    try:
+        generator = Generator(options)
+    except Exception as error:  # noqa: BLE001  (bad KB/map folders are user errors)
+        errors.print(f"[red]error:[/red] {error}")
+        raise typer.Exit(2) from None
+    with generator:
+        for ident, text in descriptions:
+            for index in range(count):
+                folder = out if single else out / (ident if count == 1 else f"{ident}/run-{index}")
+                generator.options = options.model_copy(update={"run_index": index,
+                                                               "seed": seed + index})
+                run = _run_with_progress(generator, text, folder, quiet=as_json)
+                runs.append(run)
+                if not as_json:
+                    mark = "[green]✔[/green]" if run.ok else "[red]✘[/red]"
+                    console.print(f"{mark} {folder}: {run.summary()}")
+    if as_json:
+        payload = [run.report() for run in runs]
+        print(json.dumps(payload[0] if single else payload, indent=2, default=str))
+    elif not single:
+        done = sum(run.ok for run in runs)
+        console.print(f"\n{done} of {len(runs)} runs produced an executable script")
+    if any(run.status in ("refused",) for run in runs) and single:
+        errors.print(f"[red]error:[/red] {runs[0].message}")
+        raise typer.Exit(2)
+    raise typer.Exit(0 if all(run.ok for run in runs) else 1)
+
+
+def _run_with_progress(generator: Generator, text: str, folder: Path, quiet: bool) -> Generation:
+    if quiet or not console.is_terminal:
+        return generator.generate(text, folder)
+    state: dict[str, Any] = {"stage": "starting", "attempt": 0, "error": ""}
+
+    def render() -> Text:
+        line = Text(f"{folder}: {state['stage']}")
+        if state["attempt"]:
+            line.append(f" (attempt {state['attempt']})")
+        if state["error"]:
+            line.append(f"  last error: {state['error'][:90]}", style="yellow")
+        return line
+
+    with Live(render(), console=console, transient=True, refresh_per_second=4) as live:
+        def update(event: dict[str, Any]) -> None:
+            if event.get("event") == "stage":
+                state["stage"] = event["stage"]
+                state["attempt"] = event.get("attempt", state["attempt"])
+            elif event.get("event") == "attempt":
+                state["attempt"] = event["index"]
+                state["error"] = event.get("error") or ""
+            live.update(render())
+
+        return generator.generate(text, folder, update)

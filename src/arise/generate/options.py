@@ -1,0 +1,35 @@
+"""Options of one generation run; the CLI and the benchmark fill the same model."""
+
+from __future__ import annotations
+
+from enum import StrEnum
+
+from pydantic import BaseModel, Field
+
+
+class Mode(StrEnum):
+    ARISE = "arise"  # extraction, retrieval, tuned assembly, test-and-repair loop
+    SINGLE_PASS = "single-pass"  # the same without repair
+    CHATSCENE = "chatscene"  # single pass, top-1 snippets by text only, used as they are
+
+
+class GenerateOptions(BaseModel):
+    mode: Mode = Mode.ARISE
+    provider: str | None = None
+    model: str | None = None
+    temperature: float = 0.0
+    topk: int = Field(default=2, ge=1)
+    max_repairs: int = Field(default=10, ge=0)
+    spawn_attempts: int = Field(default=15, ge=1)
+    simulator: str = "offline"
+    steps: int = 200
+    seed: int | None = 0
+    run_index: int = 0
+    check_timeout: float = 60.0
+    map_dir: str | None = None
+    kb_dirs: list[str] = Field(default_factory=list)
+    retrieval: str = "auto"
+    cache: bool | None = None
+    record: str | None = None
+    replay: str | None = None
+    threads: int | None = None
