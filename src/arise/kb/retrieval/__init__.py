@@ -45,5 +45,5 @@ def make_retriever(kb: KnowledgeBase, backend: str = "auto",
     return BM25Retriever(kb)
 
 
-__all__ = ["BACKENDS", "BM25Retriever", "EmbeddingRetriever", "EmbeddingUnavailable", "Hit",
+__all__ = ["BACKENDS", "HYBRID_LEXICAL_WEIGHT", "BM25Retriever", "EmbeddingRetriever", "EmbeddingUnavailable", "Hit",
            "HybridRetriever", "Retriever", "find_model", "make_retriever"]
