@@ -67,3 +67,25 @@ entries:
     assert not report.ok
     reasons = report.failures()["misc.scenic2_cone"]
     assert any("Scenic 2 object creation" in reason for reason in reasons), reasons
+
+
+@pytest.mark.slow
+@pytest.mark.carla_towns
+def test_entries_also_run_on_carla_towns(kb_pool: WorkerPool, carla_maps: Path) -> None:
+    """The same plan on CARLA's towns (maps chosen by their known features).
+
+    Not 100%: a few compositions need a two-way road where a town's road is one-way, and the
+    offline world model's traffic-light lookup trips on junction-less maneuvers of Town10HD.
+    """
+    from arise.maps.registry import MapRegistry
+    from arise.validate import CheckOptions
+
+    registry = MapRegistry(carla_maps)
+    towns = {name: entry.features for name, entry in registry.entries.items()
+             if entry.source == "map-dir" and entry.features}
+    report = validate_kb(load_kb(), pool=kb_pool, maps=towns,
+                         options=CheckOptions(seed=1, steps=200, timeout=180,
+                                              map_dir=str(carla_maps)))
+    ran = sum(o.ok for o in report.outcomes) / len(report.outcomes)
+    assert ran >= 0.9, report.summary()
+    assert {o.composition.map_name for o in report.outcomes} <= set(towns)
