@@ -44,7 +44,8 @@ def list_command(kb_dirs: KbDirs = None, component: ComponentOpt = None) -> None
     """List entries: id, component, first description, adversary classes."""
     kb = _load(kb_dirs)
     table = Table(show_lines=False)
-    for column in ("id", "description", "adversaries", "map features"):
+    table.add_column("id", no_wrap=True)
+    for column in ("description", "adversaries", "map features"):
         table.add_column(column)
     for entry in kb:
         if component is not None and entry.component is not component:
@@ -101,7 +102,10 @@ def search_command(
         raise typer.Exit(2) from None
     components = [component] if component is not None else list(Component)
     table = Table(title=f"backend: {retriever.name}")
-    for column in ("component", "rank", "id", "score", "description"):
+    for column in ("component", "rank"):
+        table.add_column(column)
+    table.add_column("id", no_wrap=True)
+    for column in ("score", "description"):
         table.add_column(column)
     for chosen in components:
         for rank, hit in enumerate(retriever.search(query, chosen, k), start=1):
