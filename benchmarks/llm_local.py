@@ -114,6 +114,7 @@ def main() -> None:
     parser.add_argument("--reuse-threads", type=int, default=2, help="threads for the prefix test")
     parser.add_argument("--prefix-tokens", type=int, default=1000)
     parser.add_argument("--gen-tokens", type=int, default=128)
+    parser.add_argument("--skip-reuse", action="store_true", help="only the throughput part")
     parser.add_argument("--json", type=Path, default=None, help="also write the results here")
     args = parser.parse_args()
 
@@ -138,18 +139,23 @@ def main() -> None:
     result["load_seconds"] = round(warm.details.get("load_seconds", 0.0), 2)
 
     # 1. prefix reuse
-    prefix = prefix_of_about(provider, f"reuse-{nonce}", args.prefix_tokens)
-    snap = cpu_snapshot()
-    first = call(provider, prefix, "A cyclist swerves into the lane at dusk. Give the fields.", 16)
-    second = call(provider, prefix, "A bus stops at a bus stop in the rain. Give the fields.", 16)
-    ratio = (first.first_token_latency or 0) / max(second.first_token_latency or 1e-9, 1e-9)
-    result["prefix_reuse"] = {
-        "threads": args.reuse_threads,
-        "first": row(first),
-        "second": row(second),
-        "ttft_ratio": round(ratio, 1),
-        "other_processes_cores": others_cores(snap),
-    }
+    if not args.skip_reuse:
+        prefix = prefix_of_about(provider, f"reuse-{nonce}", args.prefix_tokens)
+        snap = cpu_snapshot()
+        first = call(
+            provider, prefix, "A cyclist swerves into the lane at dusk. Give the fields.", 16
+        )
+        second = call(
+            provider, prefix, "A bus stops at a bus stop in the rain. Give the fields.", 16
+        )
+        ratio = (first.first_token_latency or 0) / max(second.first_token_latency or 1e-9, 1e-9)
+        result["prefix_reuse"] = {
+            "threads": args.reuse_threads,
+            "first": row(first),
+            "second": row(second),
+            "ttft_ratio": round(ratio, 1),
+            "other_processes_cores": others_cores(snap),
+        }
 
     # 2. throughput per thread count
     result["throughput"] = []
@@ -179,7 +185,6 @@ def main() -> None:
         )
     result["load_after"] = load()
 
-    reuse = result["prefix_reuse"]
     print(f"# LLM local benchmark ({result['date']}, {result['machine']})")
     print(
         f"model {result['model']}, llama-cpp-python {result.get('llama_cpp_python', '?')}, "
@@ -187,19 +192,24 @@ def main() -> None:
         f"after {result['load_after']}"
     )
     print()
-    print(f"Prefix reuse ({reuse['threads']} threads, ~{args.prefix_tokens}-token shared prefix):")
-    print("| call | prompt tokens | evaluated | time to first token (s) | total (s) |")
-    print("|---|---:|---:|---:|---:|")
-    for name in ("first", "second"):
-        r = reuse[name]
+    reuse = result.get("prefix_reuse")
+    if reuse:
         print(
-            f"| {name} | {r['prompt_tokens']} | {r['prompt_tokens_evaluated']} | {r['ttft_s']} | {r['latency_s']} |"
+            f"Prefix reuse ({reuse['threads']} threads, ~{args.prefix_tokens}-token shared prefix):"
         )
-    print(
-        f"\nTTFT first / second = {reuse['ttft_ratio']}x "
-        f"(other processes used {reuse['other_processes_cores']} cores meanwhile)"
-    )
-    print()
+        print("| call | prompt tokens | evaluated | time to first token (s) | total (s) |")
+        print("|---|---:|---:|---:|---:|")
+        for name in ("first", "second"):
+            r = reuse[name]
+            print(
+                f"| {name} | {r['prompt_tokens']} | {r['prompt_tokens_evaluated']} "
+                f"| {r['ttft_s']} | {r['latency_s']} |"
+            )
+        print(
+            f"\nTTFT first / second = {reuse['ttft_ratio']}x "
+            f"(other processes used {reuse['other_processes_cores']} cores meanwhile)"
+        )
+        print()
     print("| threads | prompt tok/s | gen tok/s | other processes (cores) | load average after |")
     print("|---:|---:|---:|---:|---|")
     for t in result["throughput"]:
