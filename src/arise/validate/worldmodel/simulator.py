@@ -206,8 +206,9 @@ class OfflineCarlaSimulation(DrivingSimulation):
         found = []
         if lane is not None:
             for maneuver in lane.maneuvers:
-                found.extend(maneuver.intersection.signals)
-                break
+                if maneuver.intersection is not None:
+                    found.extend(maneuver.intersection.signals)
+                    break
         if not found:
             inter = self.network.intersectionAt(obj.position)
             if inter is not None:
