@@ -105,3 +105,27 @@ def test_cli_ask_uses_the_cache_unless_told_not_to(model_path: Path) -> None:
     assert "(cache)" not in first.stderr
     assert "(cache)" in second.stderr
     assert "(cache)" not in third.stderr
+
+
+def test_auto_threads_yields_a_core_to_a_busy_neighbour(model_path: Path) -> None:
+    import subprocess
+    import sys
+    import time
+
+    provider = LocalProvider(model_path=model_path, threads=0)  # auto
+    busy = subprocess.Popen([sys.executable, "-c", "while True: pass"])
+    try:
+        time.sleep(1.0)
+        reply = provider.send(Request.build([user("Say ok.")], max_tokens=2))
+    finally:
+        busy.kill()
+        busy.wait()
+    assert reply.details["threads"] == 1
+
+
+def test_auto_threads_rule() -> None:
+    assert local.auto_threads(0.0, cores=2) == 2
+    assert local.auto_threads(0.3, cores=2) == 2
+    assert local.auto_threads(0.9, cores=2) == 1
+    assert local.auto_threads(1.9, cores=2) == 1
+    assert local.auto_threads(0.0, cores=1) == 1

@@ -207,3 +207,8 @@ def test_structured_style_and_kind_are_checked(
     write_config(tmp_path, '[providers.local]\nkind = "cloud"\n', monkeypatch)
     with pytest.raises(LLMError, match="kind must be one of"):
         load_settings()
+
+
+def test_threads_auto(monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.setenv("ARISE_LLM_THREADS", "auto")
+    assert load_settings().profile("local").threads == 0

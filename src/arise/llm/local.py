@@ -7,11 +7,14 @@ system prompt and few-shot examples) therefore pay for that prefix once. An opti
 state cache (``prefix_cache_mb``) also keeps prefixes across interleaved prompts.
 
 The thread count is a parameter because on 2 cores a second busy process makes two
-threads much slower than one; the pipeline lowers it while the validator runs.
+threads much slower than one (generation fell from ~16 to under 1 token/s in our
+benchmark); the pipeline lowers it while the validator runs. ``threads=0`` ("auto")
+decides before each call from how busy the other processes kept the CPU just before.
 """
 
 from __future__ import annotations
 
+import os
 import threading
 import time
 from pathlib import Path
@@ -95,6 +98,48 @@ def _set_threads(llama: Any, threads: int) -> None:
     _LOADED["threads"] = threads
 
 
+class CpuWatch:
+    """How many cores *other* processes used since the last look (Linux /proc/stat).
+
+    The load average cannot answer this: it counts our own threads too.
+    """
+
+    def __init__(self) -> None:
+        self._last = self._snapshot()
+
+    @staticmethod
+    def _snapshot() -> tuple[float, float, float] | None:
+        try:
+            with open("/proc/stat") as fh:
+                fields = [int(x) for x in fh.readline().split()[1:9]]
+        except (OSError, ValueError):
+            return None
+        user, nice, system_, _idle, _iowait, irq, softirq, steal = fields
+        busy = (user + nice + system_ + irq + softirq + steal) / os.sysconf("SC_CLK_TCK")
+        own = os.times()
+        return busy, own.user + own.system, time.monotonic()
+
+    def others(self, min_window: float = 0.3) -> float:
+        before = self._last
+        if before is None:
+            return 0.0
+        now = self._snapshot()
+        if now is not None and now[2] - before[2] < min_window:
+            time.sleep(min_window - (now[2] - before[2]))
+            now = self._snapshot()
+        if now is None:
+            return 0.0
+        self._last = now
+        wall = max(now[2] - before[2], 1e-6)
+        return max(0.0, (now[0] - before[0]) - (now[1] - before[1])) / wall
+
+
+def auto_threads(busy_other_cores: float, cores: int | None = None) -> int:
+    """All cores when the machine is ours; one fewer for each core someone else keeps busy."""
+    cores = cores or os.cpu_count() or 1
+    return max(1, min(cores, round(cores - busy_other_cores)))
+
+
 class _FirstToken:
     """A logits processor that only notes when the first token is about to be sampled."""
 
@@ -129,7 +174,8 @@ class LocalProvider(BaseProvider):
         self.model = (
             DEFAULT_MODEL.key if self.path.name == DEFAULT_MODEL.filename else self.path.stem
         )
-        self.threads = max(1, int(threads))
+        self.threads = max(0, int(threads))  # 0 = auto
+        self._watch = CpuWatch() if self.threads == 0 else None
         self.n_ctx = int(n_ctx)
         self.prefix_cache_mb = int(prefix_cache_mb)
         self.capabilities = capabilities or Capabilities(
@@ -137,14 +183,22 @@ class LocalProvider(BaseProvider):
         )
 
     def set_threads(self, threads: int) -> None:
-        """Pick 1 while another CPU-heavy process (the validator) runs, 2 when idle."""
-        self.threads = max(1, int(threads))
+        """Pick 1 while another CPU-heavy process (the validator) runs, 2 when idle, 0 = auto."""
+        self.threads = max(0, int(threads))
+        if self.threads == 0 and self._watch is None:
+            self._watch = CpuWatch()
+
+    def _threads_now(self) -> int:
+        if self.threads or self._watch is None:
+            return self.threads or 1
+        return auto_threads(self._watch.others())
 
     def send(self, request: Request) -> Completion:
         llama_cpp = _import_llama_cpp()
+        threads = self._threads_now()
         with _LOCK:
-            llama, load_seconds = _load(self.path, self.n_ctx, self.threads, self.prefix_cache_mb)
-            _set_threads(llama, self.threads)
+            llama, load_seconds = _load(self.path, self.n_ctx, threads, self.prefix_cache_mb)
+            _set_threads(llama, threads)
             probe = _FirstToken()
             kwargs: dict[str, Any] = {
                 "messages": [m.as_dict() for m in request.messages],
@@ -177,7 +231,7 @@ class LocalProvider(BaseProvider):
         choice = reply["choices"][0]
         usage = reply.get("usage") or {}
         details = {
-            "threads": self.threads,
+            "threads": threads,
             "prompt_tokens_evaluated": int(perf.n_p_eval),
             "prompt_eval_seconds": perf.t_p_eval_ms / 1000.0,
             "generated_tokens_evaluated": int(perf.n_eval),

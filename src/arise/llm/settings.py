@@ -39,7 +39,7 @@ class ProviderSettings:
     timeout: float = 300.0
     # embedded model only
     model_path: str | None = None
-    threads: int = 2
+    threads: int = 2  # 0 or "auto": pick per call from how busy the CPU is
     n_ctx: int = 8192
     prefix_cache_mb: int = 0  # >0: also keep prefixes across interleaved prompts (RAM)
     # replay only
@@ -189,6 +189,8 @@ def config_path() -> Path:
 def _coerce(name: str, value: Any, where: str) -> Any:
     """Light type checking, so a typo in the config is reported, not carried along."""
     expected = str(_FIELD_TYPES[name])
+    if name == "threads" and str(value).lower() == "auto":
+        return 0
     if "bool" in expected:
         if isinstance(value, bool):
             return value
