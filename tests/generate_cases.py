@@ -1,0 +1,59 @@
+"""Generator cases shared by the cassette recorder and the tests that replay them.
+
+Cassettes were recorded from the real embedded model (Qwen2.5-Coder-1.5B-Instruct Q4_K_M,
+llama.cpp, temperature 0, seed 0) with `python tests/record_generate_cassettes.py`. A change
+to a prompt, the knowledge base or the retrieval changes the requests, so the replay misses
+and names the request: re-record then.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from arise.generate.options import GenerateOptions, Mode
+
+ROOT = Path(__file__).resolve().parent
+CASSETTES = ROOT / "cassettes" / "generate"
+FAULTY_KB = ROOT / "data" / "kb_faulty"
+
+
+@dataclass(frozen=True)
+class Case:
+    name: str
+    description: str
+    mode: Mode = Mode.ARISE
+    max_repairs: int = 10
+    kb_dirs: tuple[str, ...] = ()
+    extra: dict[str, object] = field(default_factory=dict)
+
+    def options(self, **overrides: object) -> GenerateOptions:
+        values: dict[str, object] = dict(mode=self.mode, max_repairs=self.max_repairs,
+                                         kb_dirs=list(self.kb_dirs), seed=0, temperature=0.0,
+                                         retrieval="bm25", cache=False)
+        values.update(self.extra)
+        values.update(overrides)
+        return GenerateOptions.model_validate(values)
+
+    @property
+    def cassette(self) -> Path:
+        return CASSETTES / f"{self.name}.jsonl"
+
+
+CASES = {
+    case.name: case for case in [
+        Case("first_try", "A cyclist riding ahead in the ego's lane suddenly brakes to a "
+                          "full stop."),
+        Case("rule_fix", "The ego car drives along a straight two-lane road. A pedestrian "
+                         "suddenly steps off the right sidewalk, walks into the ego's lane and "
+                         "stops right in front of it."),
+        Case("llm_repair", "A jogger zigzags across the boulevard in front of the ego car.",
+             kb_dirs=(str(FAULTY_KB),)),
+        Case("give_up", "A pedestrian street mime hops across the avenue in front of the ego "
+                        "car and pirouettes.", kb_dirs=(str(FAULTY_KB),), max_repairs=1),
+        Case("single_pass", "The ego turns left at an intersection while an oncoming car goes "
+                            "straight through.", mode=Mode.SINGLE_PASS),
+        Case("chatscene", "The ego turns left at an intersection while an oncoming car goes "
+                          "straight through.", mode=Mode.CHATSCENE),
+    ]
+}
