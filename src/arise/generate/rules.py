@@ -146,6 +146,11 @@ def fix_close_name(diagnostic: Diagnostic, text: str, context: RuleContext) -> R
     return RuleFix("close_name", fixed, f"{match.group(1)} -> {suggestion.group(1)}")
 
 
+def _swap_literal(text: str, old: str, new: str) -> str:
+    """Replace a string literal, in either quote style."""
+    return text.replace(f"'{old}'", f"'{new}'").replace(f'"{old}"', f'"{new}"')
+
+
 def fix_blueprint(diagnostic: Diagnostic, text: str, context: RuleContext) -> RuleFix | None:
     """An unknown CARLA blueprint: the closest valid one, or none (a random blueprint)."""
     if diagnostic.error_type != "UnknownBlueprintError":
@@ -156,8 +161,7 @@ def fix_blueprint(diagnostic: Diagnostic, text: str, context: RuleContext) -> Ru
     close = re.search(r"close valid ones: ([\w.\-]+)", diagnostic.message)
     old = wanted.group(1)
     if close:
-        fixed = text.replace(f"'{old}'", f"'{close.group(1)}'").replace(f'"{old}"',
-                                                                        f'"{close.group(1)}"')
+        fixed = _swap_literal(text, old, close.group(1))
         return RuleFix("blueprint", fixed, f"blueprint {old} -> {close.group(1)}")
     # No close one: drop the `with blueprint ...` specifier so the model picks a valid one.
     fixed = re.sub(rf",\s*with blueprint\s+['\"]{re.escape(old)}['\"]", "", text)
@@ -174,8 +178,7 @@ def fix_weather(diagnostic: Diagnostic, text: str, context: RuleContext) -> Rule
         return None
     close = difflib.get_close_matches(wanted.group(1), WEATHER_PRESETS, n=1, cutoff=0.0)
     preset = close[0] if close else "ClearNoon"
-    fixed = text.replace(f"'{wanted.group(1)}'", f"'{preset}'").replace(
-        f'"{wanted.group(1)}"', f'"{preset}"')
+    fixed = _swap_literal(text, wanted.group(1), preset)
     return RuleFix("weather", fixed, f"weather {wanted.group(1)} -> {preset}")
 
 

@@ -41,18 +41,6 @@ TRAFFIC_LIGHT_TYPE = "1000001"
 #: CARLA's OpenDRIVE signal type for a stop sign.
 STOP_SIGN_TYPE = "206"
 
-#: The feature vocabulary shared by maps.json, carla_towns.json and features.py.
-FEATURES = (
-    "straight",
-    "multilane",
-    "sidewalk",
-    "intersection4",
-    "tjunction",
-    "signalized",
-    "highway",
-    "curve",
-    "roundabout",
-)
 
 # One outer lane beyond the driving lanes: (OpenDRIVE lane type, width).
 Outer = tuple[Any, float]
