@@ -112,6 +112,8 @@ def generate_command(
                 if not as_json:
                     mark = "[green]✔[/green]" if run.ok else "[red]✘[/red]"
                     console.print(f"{mark} {folder}: {run.summary()}")
+                    for note in run.contradictions:
+                        console.print(f"  [yellow]contradiction:[/yellow] {note}")
     if as_json:
         payload = [run.report() for run in runs]
         print(json.dumps(payload[0] if single else payload, indent=2, default=str))
