@@ -138,3 +138,16 @@ def test_re_asks_are_bounded_and_the_failure_carries_the_transcript(llama_server
     assert "NeverValid" in str(failure) and "\n" not in str(failure)
     assert len(llm.calls) == 2
     llm.close()
+
+
+def test_cli_ping_names_the_server_model(llama_server: str) -> None:
+    from typer.testing import CliRunner
+
+    from arise.llm.cli import app
+
+    result = CliRunner().invoke(app, ["ping", "-p", "llamacpp", "--base-url", llama_server])
+    assert result.exit_code == 0, result.output
+    # the server echoes the requested name; ping also shows what the server has loaded
+    assert result.stdout.startswith("llamacpp (local) answered")
+    assert "server has qwen-local" in result.stdout
+    assert "prompt +" in result.stdout

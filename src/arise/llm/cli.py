@@ -64,6 +64,7 @@ def ping(
     replay: Annotated[Path | None, typer.Option(help="Answer from this cassette.")] = None,
 ) -> None:
     """Send a one-word prompt and show which model answered and how fast (never cached)."""
+    from arise.llm.openai_compat import OpenAICompatProvider
     from arise.llm.registry import get_provider
     from arise.llm.retry import RetryPolicy
     from arise.llm.structured import template
@@ -82,6 +83,10 @@ def ping(
     )
     with llm:
         reply = llm.complete([user(template("ping.txt").strip())], max_tokens=8)
+        served: list[str] = []
+        backend = llm.unwrap()
+        if isinstance(backend, OpenAICompatProvider):
+            served = backend.served_models()
     usage = reply.usage
     speed = ""
     gen_s = reply.details.get("generation_seconds")
@@ -97,6 +102,9 @@ def ping(
     extras.append(
         f"{usage.prompt_tokens} prompt + {usage.completion_tokens} completion tokens{speed}"
     )
+    if served and reply.model not in served and len(served) <= 3:
+        # llama.cpp servers echo the requested name; say what is really loaded
+        extras.insert(0, f"server has {', '.join(served)}")
     answer = " ".join(reply.text.split())[:60]
     out.print(
         f"[bold]{escape(llm.name)}[/bold] ({escape(reply.model)}) answered "

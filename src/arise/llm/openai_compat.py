@@ -130,5 +130,16 @@ class OpenAICompatProvider(BaseProvider):
             retry_after=_retry_after(getattr(response, "headers", None)),
         )
 
+    def served_models(self, limit: int = 5) -> list[str]:
+        """Model ids the server lists (a local server shows what it actually loaded).
+
+        Best effort: servers without ``/models`` or any error give an empty list.
+        """
+        try:
+            page = self._client.models.list()
+            return [m.id for _, m in zip(range(limit + 1), page, strict=False)]
+        except Exception:  # noqa: BLE001 - purely informational
+            return []
+
     def close(self) -> None:
         self._client.close()
