@@ -15,7 +15,9 @@ import os
 import statistics
 import time
 from collections import defaultdict
+from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 from arise.generate.options import GenerateOptions, Mode
 from arise.generate.pipeline import Generation, Generator
@@ -24,12 +26,12 @@ REPO = Path(__file__).resolve().parents[1]
 PROMPTS = REPO / "benchmarks" / "data" / "dev_prompts.jsonl"
 
 
-def rcr(runs: list[Generation]) -> float | None:
+def rcr(runs: list[Any]) -> float | None:
     repaired = [run.repairs for run in runs if run.ok and not run.first_pass_ok]
     return statistics.mean(repaired) if repaired else None
 
 
-def row(name: str, runs: list[Generation]) -> str:
+def row(name: str, runs: list[Any]) -> str:
     executed = [run for run in runs if run.ok]
     first = sum(run.first_pass_ok for run in runs)
     seconds = statistics.median(run.seconds for run in executed) if executed else float("nan")
@@ -40,13 +42,64 @@ def row(name: str, runs: list[Generation]) -> str:
             f"| {'-' if value is None else f'{value:.2f}'} | {seconds:.0f} | {tokens:.0f} |")
 
 
+@dataclass
+class Finished:
+    """What the table needs from one report.json."""
+
+    ok: bool
+    first_pass_ok: bool
+    repairs: int
+    seconds: float
+    tokens: int
+
+    @property
+    def usage(self) -> Finished:
+        return self
+
+    @property
+    def total_tokens(self) -> int:
+        return self.tokens
+
+
+def summarize(out: Path) -> None:
+    categories = {json.loads(line)["id"]: json.loads(line)["category"]
+                  for line in PROMPTS.read_text().splitlines() if line.strip()}
+    runs: dict[str, list[Finished]] = defaultdict(list)
+    for path in sorted(out.glob("*/report.json")):
+        report = json.loads(path.read_text())
+        if report["status"] == "running":
+            continue
+        llm = report["llm"]
+        runs[categories.get(path.parent.name, "other")].append(Finished(
+            ok=report["status"] == "executed", first_pass_ok=report["first_pass_ok"],
+            repairs=report["repairs"], seconds=report["seconds"],
+            tokens=llm["prompt_tokens"] + llm["completion_tokens"]))
+    print_table(runs)
+
+
+def print_table(runs: dict[str, list[Any]]) -> None:
+    everything = [run for group in runs.values() for run in group]
+    print("| category | runs | ESR first pass | ESR after repair | RCR | median s per "
+          "executable script | median LLM tokens per executable script |")
+    print("|---|---|---|---|---|---|---|")
+    for category in sorted(runs):
+        print(row(category, runs[category]))
+    print(row("**all**", everything))
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--limit", type=int, default=None, help="first N prompts only")
     parser.add_argument("--mode", default="arise", choices=[m.value for m in Mode])
     parser.add_argument("--provider", default=None)
     parser.add_argument("--out", default=str(REPO / "out" / "bench-generate"))
+    parser.add_argument("--summarize", action="store_true",
+                        help="only print the table from the reports already in --out "
+                             "(e.g. of an interrupted run)")
     args = parser.parse_args()
+    if args.summarize:
+        summarize(Path(args.out))
+        return
     prompts = [json.loads(line) for line in PROMPTS.read_text().splitlines() if line.strip()]
     prompts = prompts[: args.limit] if args.limit else prompts
     options = GenerateOptions(mode=Mode(args.mode), provider=args.provider, cache=False)
@@ -60,12 +113,7 @@ def main() -> None:
     everything = [run for group in runs.values() for run in group]
     print(f"\nmode {args.mode}, {len(everything)} runs, {time.perf_counter() - started:.0f} s, "
           f"load average {os.getloadavg()[0]:.2f}\n")
-    print("| category | runs | ESR first pass | ESR after repair | RCR | median s per "
-          "executable script | median LLM tokens per executable script |")
-    print("|---|---|---|---|---|---|---|")
-    for category in sorted(runs):
-        print(row(category, runs[category]))
-    print(row("**all**", everything))
+    print_table(runs)
 
 
 if __name__ == "__main__":
