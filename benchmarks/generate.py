@@ -21,6 +21,7 @@ from typing import Any
 
 from arise.generate.options import GenerateOptions, Mode
 from arise.generate.pipeline import Generation, Generator
+from arise.llm.types import Usage
 
 REPO = Path(__file__).resolve().parents[1]
 PROMPTS = REPO / "benchmarks" / "data" / "dev_prompts.jsonl"
@@ -50,15 +51,7 @@ class Finished:
     first_pass_ok: bool
     repairs: int
     seconds: float
-    tokens: int
-
-    @property
-    def usage(self) -> Finished:
-        return self
-
-    @property
-    def total_tokens(self) -> int:
-        return self.tokens
+    usage: Usage
 
 
 def summarize(out: Path) -> None:
@@ -69,11 +62,10 @@ def summarize(out: Path) -> None:
         report = json.loads(path.read_text())
         if report["status"] == "running":
             continue
-        llm = report["llm"]
         runs[categories.get(path.parent.name, "other")].append(Finished(
             ok=report["status"] == "executed", first_pass_ok=report["first_pass_ok"],
             repairs=report["repairs"], seconds=report["seconds"],
-            tokens=llm["prompt_tokens"] + llm["completion_tokens"]))
+            usage=Usage.from_dict(report["llm"])))
     print_table(runs)
 
 

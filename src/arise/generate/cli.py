@@ -12,7 +12,7 @@ from rich.live import Live
 from rich.text import Text
 
 from arise.generate.options import GenerateOptions, Mode
-from arise.generate.pipeline import Generation, Generator, _slug
+from arise.generate.pipeline import Generation, Generator, slug
 
 console = Console(soft_wrap=True)
 errors = Console(stderr=True, soft_wrap=True)
@@ -36,7 +36,7 @@ def _read_descriptions(text: str | None, file: Path | None) -> list[tuple[str, s
     """(id, description) pairs from the argument and/or a .txt (one per line) or .jsonl file."""
     found: list[tuple[str, str]] = []
     if text is not None:
-        found.append((_slug(text), text))
+        found.append((slug(text), text))
     if file is not None:
         if not file.is_file():
             raise typer.BadParameter(f"no such file: {file}", param_hint="--file")
@@ -50,9 +50,9 @@ def _read_descriptions(text: str | None, file: Path | None) -> list[tuple[str, s
                     raise typer.BadParameter(f"{file}:{number}: not JSON ({error.msg})",
                                              param_hint="--file") from None
                 description = str(row.get("description", ""))
-                ident = str(row.get("id") or f"{number:03d}-{_slug(description)}")
+                ident = str(row.get("id") or f"{number:03d}-{slug(description)}")
             else:
-                description, ident = line.strip(), f"{number:03d}-{_slug(line)}"
+                description, ident = line.strip(), f"{number:03d}-{slug(line)}"
             found.append((ident, description))
     return found
 

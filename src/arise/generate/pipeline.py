@@ -27,7 +27,7 @@ from arise.generate.spec import ScenarioSpec
 from arise.kb.compose import ComposeError
 from arise.kb.loader import KnowledgeBase
 from arise.kb.retrieval.base import Retriever
-from arise.kb.schema import Component, Entry
+from arise.kb.schema import Component
 from arise.llm.accounting import UsageLedger
 from arise.llm.types import LLMError, Usage
 from arise.validate import CheckOptions, CheckResult, Diagnostic, Stage, WorkerPool, check_text
@@ -102,7 +102,7 @@ class Generation:
         return f"{self.status}: {self.message or ''}".strip()
 
 
-def _slug(text: str) -> str:
+def slug(text: str) -> str:
     words = re.findall(r"[a-z0-9]+", text.lower())[:6]
     return "-".join(words) or "scenario"
 
@@ -188,7 +188,7 @@ class Generator:
         finally:
             run.seconds = time.perf_counter() - started
             if self._provider is not None:
-                run.usage = _difference(self._provider.total, usage_before)
+                run.usage = self._provider.total - usage_before
             self._save(run, final=True)
         emit({"event": "done", "status": run.status, "summary": run.summary()})
         return run
@@ -294,20 +294,9 @@ class Generator:
         write_report(run.out_dir, run.report())
 
 
-def _difference(after: Usage, before: Usage) -> Usage:
-    return Usage(calls=after.calls - before.calls,
-                 cached_calls=after.cached_calls - before.cached_calls,
-                 prompt_tokens=after.prompt_tokens - before.prompt_tokens,
-                 completion_tokens=after.completion_tokens - before.completion_tokens,
-                 seconds=after.seconds - before.seconds)
-
-
 def generate(description: str, options: GenerateOptions | None = None,
              out_dir: str | Path | None = None, progress: Progress | None = None) -> Generation:
     """Library call behind `arise generate` for one description."""
     with Generator(options or GenerateOptions()) as generator:
         return generator.generate(description, Path(out_dir) if out_dir else None, progress)
 
-
-def chosen_of(run: Generation) -> list[Entry]:
-    return run.draft.entries if run.draft else []
