@@ -44,9 +44,8 @@ CASES = {
     case.name: case for case in [
         Case("first_try", "A cyclist riding ahead in the ego's lane suddenly brakes to a "
                           "full stop."),
-        Case("rule_fix", "The ego car drives along a straight two-lane road. A pedestrian "
-                         "suddenly steps off the right sidewalk, walks into the ego's lane and "
-                         "stops right in front of it."),
+        Case("rule_fix", "A pedestrian on a unicycle wobbles along the gutter ahead of the "
+                         "ego and tips into its lane.", kb_dirs=(str(FAULTY_KB),)),
         Case("llm_repair", "A jogger zigzags across the boulevard in front of the ego car.",
              kb_dirs=(str(FAULTY_KB),)),
         Case("give_up", "A pedestrian street mime hops across the avenue in front of the ego "

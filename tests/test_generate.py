@@ -47,7 +47,8 @@ def test_success_after_a_rule_fix(tmp_path, validator_pool) -> None:
     kinds = [attempt.kind for attempt in run.attempts]
     assert kinds[0] == "initial" and kinds[-1] == "rule"
     attempts = _report(tmp_path)["attempts"]
-    assert attempts[0]["diagnostic"]["error_type"] == "RejectionException"
+    assert attempts[0]["diagnostic"]["error_type"] == "NameError"
+    assert "SetWalkingSpeedAction" in run.attempts[-1].script
     assert attempts[-1]["diff"].startswith("--- before.scenic")
     assert len(list((tmp_path / "attempts").glob("*.scenic"))) == len(attempts)
 

@@ -14,6 +14,7 @@ from arise.generate.spec import (
     AdversaryType,
     EgoManeuver,
     RelativePosition,
+    RequirementKind,
     RoadType,
     ScenarioSpec,
 )
@@ -83,3 +84,57 @@ def apply_hints(description: str, spec: ScenarioSpec) -> tuple[ScenarioSpec, lis
     notes = [f"{name}: {getattr(spec, name)} -> {value} (stated in the description)"
              for name, value in changes.items()]
     return spec.model_copy(update=changes), notes
+
+
+# A requirement is kept only when the description says it in words like these: the small
+# model otherwise copies the few-shot examples' requirements into every spec.
+_REQUIREMENT_EVIDENCE: dict[RequirementKind, str] = {
+    RequirementKind.VISIBLE_AT_START: r"visible|in (?:plain |clear )?(?:view|sight)|"
+                                      r"can see|sees|spots",
+    RequirementKind.NOT_VISIBLE_AT_START: r"hidden|hides|occlud\w*|out of (?:view|sight)|"
+                                          r"obscured|not visible|invisible|unseen|blind spot|"
+                                          r"(?:from )?behind (?:a|an|the) (?:parked|stopped|"
+                                          r"bus|van|truck|wall|hedge|car)",
+    RequirementKind.DISTANCE_AT_START: r"\d+(?:\.\d+)?\s*(?:m|meters?|metres?)\b|"
+                                       r"(?:meters?|metres?) (?:ahead|away|behind)",
+    RequirementKind.EVENTUALLY_CLOSE: r"comes? (?:very )?close|gets? (?:very )?close|"
+                                      r"near miss|close call|within \d",
+    RequirementKind.IN_INTERSECTION: r"(?:in|inside|in the middle of) the (?:intersection|"
+                                     r"junction|crossroads)",
+    RequirementKind.SAME_DIRECTION: r"same direction|same way|side by side|alongside",
+    RequirementKind.OPPOSITE_DIRECTION: r"oncoming|opposite direction|the other way|"
+                                        r"head-on|towards? the ego",
+}
+# Kinds that cannot hold for an adversary that starts at this position.
+_REQUIREMENT_CONFLICTS: dict[RequirementKind, set[RelativePosition]] = {
+    RequirementKind.SAME_DIRECTION: {RelativePosition.ONCOMING,
+                                     RelativePosition.CROSSING_FROM_LEFT,
+                                     RelativePosition.CROSSING_FROM_RIGHT},
+    RequirementKind.OPPOSITE_DIRECTION: {RelativePosition.AHEAD_SAME_LANE,
+                                         RelativePosition.BEHIND_SAME_LANE,
+                                         RelativePosition.ADJACENT_LANE_LEFT,
+                                         RelativePosition.ADJACENT_LANE_RIGHT,
+                                         RelativePosition.CROSSING_FROM_LEFT,
+                                         RelativePosition.CROSSING_FROM_RIGHT},
+}
+
+
+def keep_stated_requirements(description: str, spec: ScenarioSpec
+                             ) -> tuple[ScenarioSpec, list[str]]:
+    """The spec without requirements the description does not state or its spawn rules out."""
+    text = description.lower()
+    kept, notes = [], []
+    for requirement in spec.requirements:
+        if requirement.kind in {r.kind for r in kept}:
+            continue
+        if not re.search(rf"\b(?:{_REQUIREMENT_EVIDENCE[requirement.kind]})", text):
+            notes.append(f"requirements: dropped {requirement.kind} (not stated in the "
+                         "description)")
+        elif spec.spawn_position in _REQUIREMENT_CONFLICTS.get(requirement.kind, set()):
+            notes.append(f"requirements: dropped {requirement.kind} (contradicts "
+                         f"{spec.spawn_position})")
+        else:
+            kept.append(requirement)
+    if len(kept) == len(spec.requirements):
+        return spec, notes
+    return spec.model_copy(update={"requirements": kept}), notes

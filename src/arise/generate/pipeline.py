@@ -11,7 +11,7 @@ from typing import Any
 
 from arise.generate.assemble import Draft, assemble, declared_params, tune_params
 from arise.generate.extract import check_description, extract_spec
-from arise.generate.hints import apply_hints
+from arise.generate.hints import apply_hints, keep_stated_requirements
 from arise.generate.options import GenerateOptions, Mode
 from arise.generate.outputs import write_attempt, write_report, write_script
 from arise.generate.repair import (
@@ -212,7 +212,9 @@ class Generator:
         if extraction.spec is None:
             run.status, run.message = "refused", extraction.error
             return
-        run.spec, run.hint_notes = apply_hints(run.description, extraction.spec)
+        hinted, run.hint_notes = apply_hints(run.description, extraction.spec)
+        run.spec, dropped = keep_stated_requirements(run.description, hinted)
+        run.hint_notes += dropped
         run.contradictions = extraction.contradictions
         spec = run.spec
         emit({"event": "stage", "stage": "retrieve"})

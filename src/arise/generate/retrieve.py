@@ -76,6 +76,12 @@ def _prefer(entries: list[Entry], key: Callable[[Entry], int]) -> list[Entry]:
     return sorted(entries, key=lambda entry: -key(entry))
 
 
+def _route_agrees(behavior: Entry, geometry: Entry) -> bool:
+    """A turning behavior follows the geometry's adversary route: only its own geometries
+    give that route the turn its name promises."""
+    return "turning_across" not in behavior.tags or geometry.id in behavior.companions
+
+
 def _geometry_pool(spec: ScenarioSpec, entries: list[Entry],
                    placeable: Callable[[Entry], bool]) -> tuple[list[Entry], list[str]]:
     notes: list[str] = []
@@ -143,7 +149,8 @@ def retrieve(spec: ScenarioSpec, kb: KnowledgeBase, retriever: Retriever,
         for spawn in spawns:
             both = defined | set(spawn.defines)
             behaviors = [e for e in kb.of(Component.BEHAVIOR)
-                         if e.suits(adversary) and set(e.needs) <= both]
+                         if e.suits(adversary) and set(e.needs) <= both
+                         and _route_agrees(e, geometry)]
             behaviors = _ranked(retriever, query(spec.behavior), Component.BEHAVIOR, behaviors)
             if not behaviors:
                 continue
