@@ -14,6 +14,7 @@ from arise.generate.spec import (
     AdversaryType,
     EgoManeuver,
     RelativePosition,
+    Requirement,
     RequirementKind,
     RoadType,
     ScenarioSpec,
@@ -123,7 +124,8 @@ def keep_stated_requirements(description: str, spec: ScenarioSpec
                              ) -> tuple[ScenarioSpec, list[str]]:
     """The spec without requirements the description does not state or its spawn rules out."""
     text = description.lower()
-    kept, notes = [], []
+    kept: list[Requirement] = []
+    notes: list[str] = []
     for requirement in spec.requirements:
         if requirement.kind in {r.kind for r in kept}:
             continue
