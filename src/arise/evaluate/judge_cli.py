@@ -1,0 +1,201 @@
+"""`arise judge`: a language model scores a Scenic script against its description (SCS)."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+from typing import Annotated, Any
+
+import typer
+from rich.console import Console
+from rich.markup import escape
+from rich.table import Table
+
+from arise.evaluate.judge import (
+    CRITERIA,
+    DEFAULT_WEIGHTS,
+    Consistency,
+    Judgement,
+    WeightsError,
+    consistency,
+    input_problem,
+    judge_script,
+    parse_weights,
+)
+from arise.llm.registry import get_provider
+from arise.llm.types import LLMError
+
+console = Console(soft_wrap=True)
+errors = Console(stderr=True, soft_wrap=True)
+
+JUDGE_HELP = """Score how well a Scenic script says what its description says (SCS).
+
+A language model rates seven criteria from 0 to 10 (adversary_type, behavior, geometry,
+weather, participants, requirements, spawn); SCS is their weighted sum divided by 10 x the
+sum of the weights (all weights 1: sum / 70). SCRIPT is a .scenic file, or a folder written
+by `arise generate` (scenario.scenic + report.json): then DESCRIPTION "-" takes the
+description from report.json. --repeat N judges the same pair N times (seed, seed+1, ...)
+and shows min/max/mean/std (population std). Exit codes: 0 judged, 1 the model failed
+or could not be reached, 2 a mistake in the arguments.
+
+Examples:
+
+  arise judge "A pedestrian crosses in front of the ego and stops." scenario.scenic
+
+  arise judge - out/                     # a generation folder: description from report.json
+
+  arise judge - out/ --repeat 10 --temperature 0.7 --json
+
+  arise judge - out/ --weights adversary_type=2,behavior=1.5 --provider openai
+"""
+
+
+class UserMistake(Exception):
+    """A bad argument: one line on stderr and exit code 2."""
+
+
+def load_pair(description: str, script: Path) -> tuple[str, str]:
+    """(description, script text) from the arguments; a generation folder supplies both."""
+    if script.is_dir():
+        scenic = script / "scenario.scenic"
+        if not scenic.is_file():
+            raise UserMistake(f"{script} is a folder without scenario.scenic; give a .scenic "
+                              "file or a folder written by `arise generate`")
+        if description.strip() == "-":
+            report = script / "report.json"
+            try:
+                data = json.loads(report.read_text(encoding="utf-8"))
+            except FileNotFoundError:
+                raise UserMistake(f"{script} has no report.json to take the description from; "
+                                  "give the description instead of '-'") from None
+            except (json.JSONDecodeError, UnicodeDecodeError) as error:
+                raise UserMistake(f"{report} is not JSON ({error})") from None
+            found = data.get("description") if isinstance(data, dict) else None
+            if not isinstance(found, str) or not found.strip():
+                raise UserMistake(f"{report} has no description; give it instead of '-'")
+            description = found
+        script = scenic
+    elif description.strip() == "-":
+        raise UserMistake("'-' takes the description from report.json, which only a folder "
+                          "written by `arise generate` has; give the description in words")
+    if not script.is_file():
+        raise UserMistake(f"no such script: {script}")
+    try:
+        text = script.read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError) as error:
+        raise UserMistake(f"cannot read {script}: {error}") from None
+    problem = input_problem(description, text)
+    if problem:
+        raise UserMistake(problem)
+    return description, text
+
+
+def judge_command(
+    description: Annotated[str, typer.Argument(
+        help="The scenario description the script was made from; '-' takes it from "
+             "SCRIPT/report.json.")],
+    script: Annotated[Path, typer.Argument(
+        help="A .scenic file, or a folder written by `arise generate`.")],
+    repeat: Annotated[int, typer.Option(
+        help="Judge the same pair N times (seed, seed+1, ...) and show the spread.")] = 1,
+    weights: Annotated[str | None, typer.Option(
+        help="Criterion weights, e.g. adversary_type=2,behavior=1.5 (the rest stay 1).")]
+    = None,
+    provider: Annotated[str | None, typer.Option(help="LLM provider (see `arise llm info`).")]
+    = None,
+    model: Annotated[str | None, typer.Option(help="Model name for the provider.")] = None,
+    temperature: Annotated[float, typer.Option(help="Sampling temperature.")] = 0.0,
+    seed: Annotated[int, typer.Option(help="Seed for the model (repeat i uses seed + i).")] = 0,
+    no_cache: Annotated[bool, typer.Option("--no-cache", help="Do not use the LLM cache.")]
+    = False,
+    record: Annotated[str | None, typer.Option(help="Record LLM calls to this cassette.")]
+    = None,
+    replay: Annotated[str | None, typer.Option(help="Answer LLM calls from this cassette.")]
+    = None,
+    as_json: Annotated[bool, typer.Option("--json", help="Print the result as JSON.")] = False,
+) -> None:
+    try:
+        if repeat < 1:
+            raise UserMistake("--repeat must be at least 1")
+        if temperature < 0:
+            raise UserMistake("--temperature must be >= 0")
+        try:
+            chosen = parse_weights(weights)
+        except WeightsError as error:
+            raise UserMistake(str(error)) from None
+        text_description, script_text = load_pair(description, script)
+    except UserMistake as error:
+        errors.print(f"[red]error:[/red] {escape(str(error))}", highlight=False)
+        raise typer.Exit(2) from None
+
+    overrides: dict[str, Any] = {"model": model} if model else {}
+    try:
+        llm = get_provider(provider, cache=False if no_cache else None, record=record,
+                           replay=replay, **overrides)
+        with llm:
+            if repeat == 1:
+                result: Judgement | Consistency = judge_script(
+                    text_description, script_text, llm, temperature=temperature, seed=seed,
+                    weights=chosen)
+            else:
+                result = consistency(text_description, script_text, llm, repeat=repeat,
+                                     temperature=temperature, seed=seed, weights=chosen)
+    except LLMError as error:
+        errors.print(f"[red]error:[/red] {escape(str(error))}", highlight=False)
+        raise typer.Exit(1) from None
+
+    if as_json:
+        payload = {"description": text_description, "script": str(script), **result.as_dict()}
+        print(json.dumps(payload, indent=2, ensure_ascii=False))
+        return
+    if isinstance(result, Judgement):
+        _print_judgement(result)
+    else:
+        if temperature == 0:
+            errors.print("[dim]note: at temperature 0 a deterministic model (the local one) "
+                         "gives the same answer for every seed; try --temperature 0.7[/dim]")
+        _print_consistency(result)
+
+
+def _weighted(weights: dict[str, float]) -> bool:
+    return weights != DEFAULT_WEIGHTS
+
+
+def _print_judgement(result: Judgement) -> None:
+    table = Table(show_edge=False, pad_edge=False)
+    table.add_column("criterion")
+    table.add_column("score", justify="right")
+    if _weighted(result.weights):
+        table.add_column("weight", justify="right")
+    table.add_column("reason", overflow="fold")
+    for name in CRITERIA:
+        row = [name, f"{result.scores[name]}/10"]
+        if _weighted(result.weights):
+            row.append(f"{result.weights[name]:g}")
+        row.append(escape(result.reasons[name]))
+        table.add_row(*row)
+    console.print(table)
+    source = "cache" if result.cached else f"{result.seconds:.1f} s"
+    console.print(f"[bold]SCS {100 * result.scs:.2f} %[/bold]  [dim]({escape(result.model)}, "
+                  f"{source}, {result.usage.prompt_tokens} prompt + "
+                  f"{result.usage.completion_tokens} completion tokens)[/dim]", highlight=False)
+
+
+def _print_consistency(result: Consistency) -> None:
+    table = Table(show_edge=False, pad_edge=False,
+                  title=f"{len(result.runs)} judgements of the same script (population std)")
+    for column in ("criterion", "min", "max", "mean", "std"):
+        table.add_column(column, justify="left" if column == "criterion" else "right")
+    for name, stats in result.criteria.items():
+        table.add_row(name, f"{stats.min:g}", f"{stats.max:g}", f"{stats.mean:.2f}",
+                      f"{stats.std:.2f}")
+    scs = result.scs
+    table.add_row("[bold]SCS %[/bold]", f"{100 * scs.min:.2f}", f"{100 * scs.max:.2f}",
+                  f"{100 * scs.mean:.2f}", f"{100 * scs.std:.2f} pp")
+    console.print(table)
+    for line in result.failures:
+        console.print(f"[yellow]failed:[/yellow] {escape(line)}", highlight=False)
+    usage = result.usage
+    console.print(f"[dim]{usage.calls} calls, {usage.seconds:.1f} s, {usage.prompt_tokens} "
+                  f"prompt + {usage.completion_tokens} completion tokens[/dim]",
+                  highlight=False)
