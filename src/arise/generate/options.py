@@ -33,3 +33,5 @@ class GenerateOptions(BaseModel):
     record: str | None = None
     replay: str | None = None
     threads: int | None = None
+    # Also require the deterministic conformity check to agree with the spec.
+    semantic_gate: bool = False

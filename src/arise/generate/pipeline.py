@@ -139,7 +139,17 @@ class Generator:
         self.maps = {name: entry.features for name, entry in self.registry.entries.items()}
         self._own_pool = pool is None
         self.pool = pool or WorkerPool(size=1)
+        self._own_provider = provider is None
         self._provider = provider
+
+    def reconfigure(self, options: GenerateOptions) -> None:
+        """Use other per-run options (mode, temperature, seed, run) with the same KB, maps,
+        validator and model; a replayed run index needs its own cassette reader."""
+        if (self._provider is not None and self._own_provider and options.replay
+                and options.run_index != self.options.run_index):
+            self._provider.close()
+            self._provider = None
+        self.options = options
 
     @property
     def provider(self) -> UsageLedger:
@@ -160,7 +170,7 @@ class Generator:
     def close(self) -> None:
         if self._own_pool:
             self.pool.close()
-        if self._provider is not None:
+        if self._provider is not None and self._own_provider:
             self._provider.close()
 
     def __enter__(self) -> Generator:
@@ -201,8 +211,28 @@ class Generator:
             spawn_attempts=options.spawn_attempts, seed=options.seed,
             sample_iterations=SAMPLE_ITERATIONS, timeout=options.check_timeout, png=png)
         result = check_text(script, check_options, pool=self.pool, registry=self.registry)
+        if result.ok and options.semantic_gate and run.spec is not None:
+            result = self._semantic_gate(result, run.spec)
         run.final_check = result
         return result
+
+    def _semantic_gate(self, result: CheckResult, spec: ScenarioSpec) -> CheckResult:
+        """A script that runs but contradicts the spec fails, naming the section to change."""
+        from arise.evaluate.conformity import GATED_CHECKS, check_conformity
+
+        entry = self.registry.entries.get(result.map.name) if result.map else None
+        conformity = check_conformity(spec, result.simulation,
+                                      entry.features if entry else frozenset())
+        wrong = [c for c in conformity.checks if c.ok is False and c.name in GATED_CHECKS]
+        if not wrong:
+            return result
+        diagnostic = Diagnostic(
+            stage=Stage.SEMANTIC, error_type="ConformityMismatch",
+            message="; ".join(f"{c.name}: expected {c.expected}, observed {c.observed}"
+                              for c in wrong),
+            section=GATED_CHECKS[wrong[0].name],
+            hint="the script runs but does not do what the description says")
+        return result.model_copy(update={"ok": False, "diagnostic": diagnostic})
 
     def _run(self, run: Generation, emit: Progress) -> None:
         options = self.options

@@ -194,6 +194,10 @@ Validate = Callable[[str], CheckResult]
 def repair_once(context: RepairContext, script: str, diagnostic: Diagnostic
                 ) -> tuple[str | None, str, str, Usage]:
     """One repair step: (new script or None, kind, detail, model usage)."""
+    if diagnostic.stage is Stage.SEMANTIC:
+        # The script runs: editing numbers will not change who or where; another entry will.
+        swapped, note = swap_candidate(context, guilty_section(diagnostic))
+        return swapped, "swap", note, Usage()
     fix = apply_rules(diagnostic, script, context.rules)
     if fix is not None:
         return fix.text, "rule", f"{fix.rule}: {fix.note}", Usage()

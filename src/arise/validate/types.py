@@ -19,6 +19,8 @@ class Stage(StrEnum):
     COMPILE = "compile"
     SAMPLE = "sample"
     SIMULATE = "simulate"
+    # The script ran but says something else than the description (the optional gate).
+    SEMANTIC = "semantic"
 
 
 class Rejection(BaseModel):
@@ -75,6 +77,10 @@ class AgentTrace(BaseModel):
     width: float
     length: float
     is_ego: bool = False
+    # The class name of the behavior it ran (`AdversaryBehavior` marks our adversary).
+    behavior: str | None = None
+    # Steps at which the agent was inside a junction of the map.
+    intersection_steps: int = 0
     trajectory: list[TracePoint] = Field(default_factory=list)
 
 
@@ -104,6 +110,8 @@ class SimulationFacts(BaseModel):
     collisions: list[Collision] = Field(default_factory=list)
     ego_pairs: list[EgoPairFacts] = Field(default_factory=list)
     events: list[dict[str, object]] = Field(default_factory=list)
+    # Global parameters of the scene that ran (weather, OPT_* values), as text.
+    params: dict[str, str] = Field(default_factory=dict)
 
 
 class CheckOptions(BaseModel):

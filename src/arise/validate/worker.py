@@ -266,11 +266,30 @@ def _agent_traces(simulation: Any) -> list[AgentTrace]:
             if index < len(state) and isinstance(state[index], tuple)
         ]
         blueprint = getattr(obj, "blueprint", None)
+        behavior = getattr(obj, "behavior", None)
         traces.append(AgentTrace(
             name=name, kind=kind, blueprint=blueprint if isinstance(blueprint, str) else None,
             width=float(obj.width), length=float(obj.length), is_ego=is_ego,
+            behavior=type(behavior).__name__ if behavior is not None else None,
+            intersection_steps=_steps_in_junctions(simulation, points),
             trajectory=points))
     return traces
+
+
+def _steps_in_junctions(simulation: Any, points: list[TracePoint]) -> int:
+    network = getattr(getattr(simulation.scene, "workspace", None), "network", None)
+    region = getattr(network, "intersectionRegion", None)
+    if region is None:
+        return 0
+    try:
+        return sum(bool(region.containsPoint((p.x, p.y))) for p in points)
+    except Exception:  # an odd region must not cost the facts of a run that worked
+        return 0
+
+
+def _scene_params(scene: Any) -> dict[str, str]:
+    return {str(name): str(value) for name, value in dict(scene.params).items()
+            if isinstance(value, str | int | float | bool)}
 
 
 def _simulation_facts(simulation: Any) -> SimulationFacts:
@@ -288,6 +307,7 @@ def _simulation_facts(simulation: Any) -> SimulationFacts:
         collisions=find_collisions(agents, float(simulation.timestep)),
         ego_pairs=ego_pair_facts(agents),
         events=events,
+        params=_scene_params(simulation.scene),
     )
 
 

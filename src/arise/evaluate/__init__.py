@@ -1,0 +1,1 @@
+"""Evaluation: benchmark runs, the paper's metrics, judges and reports."""

@@ -1,0 +1,190 @@
+"""`arise bench` and `arise report`: the paper's evaluation on anyone's prompts."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Annotated
+
+import typer
+from rich.console import Console
+from rich.progress import (
+    BarColumn,
+    MofNCompleteColumn,
+    Progress,
+    TextColumn,
+    TimeElapsedColumn,
+    TimeRemainingColumn,
+)
+
+from arise.evaluate.prompt_file import PromptFileError, read_prompts
+from arise.evaluate.records import RunRecord
+from arise.evaluate.report import write_report
+from arise.evaluate.runner import EXECUTORS, BenchConfig, pending, run_bench
+from arise.evaluate.store import BenchStore, BenchStoreError
+from arise.generate.options import GenerateOptions, Mode
+
+console = Console(soft_wrap=True)
+errors = Console(stderr=True, soft_wrap=True)
+
+BENCH_HELP = """Run the generator over a prompt file and measure it the paper's way.
+
+Every run goes into DIR/bench.sqlite as it finishes; running the same command again resumes
+and only does the runs that are missing. At the end DIR/report/ holds report.md (ESR, RCR,
+conformity, SCS, cost and criticality per category), table.csv, runs.csv and two plots.
+
+PROMPTS is .jsonl ({"id", "category", "description"} per line), .csv (columns id,
+category, description) or .txt (one description per line, or category<TAB>description).
+
+Examples:
+
+  arise bench benchmarks/data/dev_prompts.jsonl --out out/bench
+
+  arise bench prompts.csv --runs 5 --modes arise,single-pass,chatscene --temperatures 0.3,1.0
+
+  arise bench prompts.txt --provider openai --model gpt-4o-mini --workers 4 --judge
+
+  arise bench prompts.jsonl --executor ray --workers 8
+"""
+
+REPORT_HELP = """Write the report of a benchmark database (Markdown, CSV and PNG plots).
+
+Examples:
+
+  arise report out/bench/bench.sqlite
+
+  arise report out/bench/bench.sqlite --out docs/eval --title "Dev set, Qwen 1.5B"
+"""
+
+
+def _split(text: str, name: str) -> list[str]:
+    items = [item.strip() for item in text.split(",") if item.strip()]
+    if not items:
+        raise typer.BadParameter("give at least one value", param_hint=name)
+    return items
+
+
+def _modes(text: str) -> list[Mode]:
+    try:
+        return [Mode(item) for item in _split(text, "--modes")]
+    except ValueError:
+        raise typer.BadParameter(f"modes are {', '.join(m.value for m in Mode)}",
+                                 param_hint="--modes") from None
+
+
+def _temperatures(text: str) -> list[float]:
+    try:
+        values = [float(item) for item in _split(text, "--temperatures")]
+    except ValueError:
+        raise typer.BadParameter("temperatures are numbers, e.g. 0.3,1.0",
+                                 param_hint="--temperatures") from None
+    if any(not 0 <= value <= 2 for value in values):
+        raise typer.BadParameter("temperatures lie between 0 and 2",
+                                 param_hint="--temperatures")
+    return values
+
+
+def bench_command(
+    prompts: Annotated[Path, typer.Argument(help="Prompt file (.jsonl, .csv or .txt).")],
+    out: Annotated[Path, typer.Option("-o", "--out", help="Folder for the database, runs "
+                                      "and report.")] = Path("out/bench"),
+    runs: Annotated[int, typer.Option(help="Runs per prompt, mode and temperature.", min=1)]
+    = 1,
+    modes: Annotated[str, typer.Option(help="Comma-separated: arise, single-pass, chatscene.")]
+    = "arise",
+    temperatures: Annotated[str, typer.Option(help="Comma-separated temperatures.")] = "0",
+    provider: Annotated[str | None, typer.Option(help="LLM provider (see `arise llm info`).")]
+    = None,
+    model: Annotated[str | None, typer.Option(help="Model name for the provider.")] = None,
+    workers: Annotated[int, typer.Option(help="Parallel generators (each loads the model).",
+                                         min=1)] = 1,
+    executor: Annotated[str, typer.Option(help="local (processes) or ray.")] = "local",
+    ray_address: Annotated[str | None, typer.Option(help="Ray cluster to join (default: a "
+                                                    "local Ray instance).")] = None,
+    max_repairs: Annotated[int, typer.Option(help="Repair budget per run.")] = 10,
+    seed: Annotated[int, typer.Option(help="Base seed; run i uses seed + i.")] = 0,
+    limit: Annotated[int | None, typer.Option(help="Only the first N prompts.")] = None,
+    judge: Annotated[bool, typer.Option("--judge", help="Score executed scripts with the "
+                                        "LLM judge (SCS).")] = False,
+    semantic_gate: Annotated[bool, typer.Option(
+        "--semantic-gate", help="A script must also pass the conformity check.")] = False,
+    map_dir: Annotated[str | None, typer.Option(help="Extra maps (e.g. CARLA towns).")] = None,
+    replay: Annotated[str | None, typer.Option(help="Answer LLM calls from this cassette.")]
+    = None,
+) -> None:
+    if executor not in EXECUTORS:
+        errors.print(f"[red]error:[/red] --executor is one of {', '.join(EXECUTORS)}")
+        raise typer.Exit(2)
+    try:
+        items = read_prompts(prompts)
+    except PromptFileError as error:
+        errors.print(f"[red]error:[/red] {error}")
+        raise typer.Exit(2) from None
+    base = GenerateOptions(provider=provider, model=model, max_repairs=max_repairs, seed=seed,
+                           map_dir=map_dir, replay=replay, semantic_gate=semantic_gate)
+    config = BenchConfig(prompts=items[:limit] if limit else items, base=base,
+                         modes=_modes(modes), temperatures=_temperatures(temperatures),
+                         runs=runs, workers=workers, executor=executor, judge=judge,
+                         ray_address=ray_address)
+    try:
+        store = BenchStore(out / "bench.sqlite")
+    except BenchStoreError as error:
+        errors.print(f"[red]error:[/red] {error}")
+        raise typer.Exit(2) from None
+    with store:
+        todo = pending(config, store)
+        total = len(todo) + len(store.done_keys())
+        console.print(f"{len(todo)} run(s) to do, {total - len(todo)} already in "
+                      f"{out / 'bench.sqlite'}")
+        try:
+            _run_with_bar(config, store, out, len(todo))
+        except KeyboardInterrupt:
+            errors.print("\ninterrupted: finished runs are saved; run the same command to "
+                         "resume")
+            raise typer.Exit(130) from None
+        except RuntimeError as error:
+            errors.print(f"[red]error:[/red] {error}")
+            raise typer.Exit(1) from None
+        records = store.runs()
+        written = write_report(records, out / "report", store.meta())
+    executed = sum(r.ok for r in records)
+    console.print(f"{executed} of {len(records)} runs executable; report: {written[0]}")
+
+
+def _run_with_bar(config: BenchConfig, store: BenchStore, out: Path, count: int) -> None:
+    columns = [TextColumn("{task.description}"), BarColumn(), MofNCompleteColumn(),
+               TimeElapsedColumn(), TextColumn("ETA"), TimeRemainingColumn()]
+    with Progress(*columns, console=console, disable=not console.is_terminal) as bar:
+        task = bar.add_task("runs", total=count)
+        ok = [0]
+
+        def advance(record: RunRecord) -> None:
+            ok[0] += record.ok
+            bar.update(task, advance=1, description=f"runs ({ok[0]} executable)")
+            if not console.is_terminal:
+                console.print(f"{record.task.label()}: {record.status} "
+                              f"({record.repairs} repairs, {record.seconds:.0f} s)")
+
+        run_bench(config, store, out, advance)
+
+
+def report_command(
+    database: Annotated[Path, typer.Argument(help="bench.sqlite written by `arise bench`.")],
+    out: Annotated[Path | None, typer.Option("-o", "--out", help="Report folder (default: "
+                                             "beside the database, report/).")] = None,
+    title: Annotated[str, typer.Option(help="Title of report.md.")] = "arise benchmark report",
+) -> None:
+    if not database.is_file():
+        errors.print(f"[red]error:[/red] no such database: {database}")
+        raise typer.Exit(2)
+    try:
+        with BenchStore(database) as store:
+            records, meta = store.runs(), store.meta()
+    except BenchStoreError as error:
+        errors.print(f"[red]error:[/red] {error}")
+        raise typer.Exit(2) from None
+    if not records:
+        errors.print(f"[red]error:[/red] {database} holds no finished runs yet")
+        raise typer.Exit(2)
+    written = write_report(records, out or database.parent / "report", meta, title)
+    for path in written:
+        console.print(str(path))

@@ -1,0 +1,237 @@
+"""Deterministic conformity: does the scenario that ran say what the spec says?
+
+No model is asked. Facts come from the simulation the validator ran (which agent is the
+adversary, its class, where it started and which way it went, the ego's maneuver, the
+junction steps, the weather parameter, the other objects) and are compared with the spec.
+A fact that cannot be read (no trace, a weather dict) is "unknown" and does not count.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any
+
+from arise.generate.spec import EgoManeuver, RelativePosition, RoadType, ScenarioSpec
+from arise.validate.types import AgentTrace, SimulationFacts, TracePoint
+
+LANE_HALF = 1.8  # |lateral offset| below this is "in the ego's lane"
+NEXT_LANE = 5.6  # up to this is the adjacent lane
+TURN_DEGREES = 45.0
+LANE_CHANGE_METRES = 2.2
+MOVED_METRES = 1.5
+REACH_MARGIN = 1.0  # metres beyond the two half-widths that still count as "in the path"
+# Checks the optional semantic gate enforces, and the script section that decides each.
+GATED_CHECKS = {"adversary_type": "SPAWN", "spawn_position": "SPAWN",
+                "ego_maneuver": "GEOMETRY", "road_type": "GEOMETRY", "weather": "WEATHER"}
+
+
+@dataclass(frozen=True)
+class ConformityCheck:
+    name: str
+    expected: str
+    observed: str
+    ok: bool | None  # None: the fact could not be read
+
+    def as_dict(self) -> dict[str, Any]:
+        return {"name": self.name, "expected": self.expected, "observed": self.observed,
+                "ok": self.ok}
+
+
+@dataclass
+class Conformity:
+    checks: list[ConformityCheck] = field(default_factory=list)
+
+    @property
+    def known(self) -> list[ConformityCheck]:
+        return [c for c in self.checks if c.ok is not None]
+
+    @property
+    def score(self) -> float | None:
+        """Share of the readable facts that agree with the spec."""
+        known = self.known
+        return sum(bool(c.ok) for c in known) / len(known) if known else None
+
+    @property
+    def mismatches(self) -> list[str]:
+        return [f"{c.name}: expected {c.expected}, observed {c.observed}"
+                for c in self.checks if c.ok is False]
+
+    def as_dict(self) -> dict[str, Any]:
+        return {"score": self.score, "mismatches": self.mismatches,
+                "checks": [c.as_dict() for c in self.checks]}
+
+
+# -- facts from the trace -------------------------------------------------------------------
+
+def find_adversary(agents: list[AgentTrace]) -> AgentTrace | None:
+    """Our scripts name the adversary's behavior AdversaryBehavior; else the first mover."""
+    others = [a for a in agents if not a.is_ego]
+    for agent in others:
+        if agent.behavior == "AdversaryBehavior":
+            return agent
+    movers = [a for a in others if a.behavior]
+    candidates = movers or others
+    return candidates[0] if candidates else None
+
+
+def _wrap(angle: float) -> float:
+    return (angle + math.pi) % (2 * math.pi) - math.pi
+
+
+def _frame(origin: TracePoint, x: float, y: float) -> tuple[float, float]:
+    """(ahead, left) of a point in the frame of `origin` (Scenic heading 0 = +y, CCW)."""
+    dx, dy = x - origin.x, y - origin.y
+    forward = (-math.sin(origin.heading), math.cos(origin.heading))
+    left = (-math.cos(origin.heading), -math.sin(origin.heading))
+    return dx * forward[0] + dy * forward[1], dx * left[0] + dy * left[1]
+
+
+def _travel_heading(trace: AgentTrace) -> float | None:
+    """Heading of the first few metres actually driven or walked, or None if it never moved."""
+    if not trace.trajectory:
+        return None
+    start = trace.trajectory[0]
+    for point in trace.trajectory:
+        dx, dy = point.x - start.x, point.y - start.y
+        if math.hypot(dx, dy) >= MOVED_METRES:
+            return math.atan2(-dx, dy)
+    return None
+
+
+def ego_maneuver(ego: AgentTrace) -> EgoManeuver | None:
+    if len(ego.trajectory) < 2:
+        return None
+    start, end = ego.trajectory[0], ego.trajectory[-1]
+    turn = math.degrees(_wrap(end.heading - start.heading))
+    if turn > TURN_DEGREES:
+        return EgoManeuver.TURN_LEFT
+    if turn < -TURN_DEGREES:
+        return EgoManeuver.TURN_RIGHT
+    _, lateral = _frame(start, end.x, end.y)
+    return EgoManeuver.CHANGE_LANE if abs(lateral) > LANE_CHANGE_METRES \
+        else EgoManeuver.GO_STRAIGHT
+
+
+@dataclass(frozen=True)
+class StartRelation:
+    ahead: float
+    left: float
+    direction: str  # same | opposite | crossing | unknown
+
+    @property
+    def side(self) -> str:
+        if abs(self.left) < LANE_HALF:
+            return "centre"
+        return "left" if self.left > 0 else "right"
+
+    def describe(self) -> str:
+        where = "ahead" if self.ahead >= 0 else "behind"
+        return (f"{abs(self.ahead):.0f} m {where}, {abs(self.left):.1f} m "
+                f"{'left' if self.left >= 0 else 'right'}, moving {self.direction}")
+
+
+def start_relation(ego: AgentTrace, adversary: AgentTrace) -> StartRelation | None:
+    if not ego.trajectory or not adversary.trajectory:
+        return None
+    origin, first = ego.trajectory[0], adversary.trajectory[0]
+    ahead, left = _frame(origin, first.x, first.y)
+    heading = _travel_heading(adversary)
+    if heading is None:
+        direction = "unknown"
+    else:
+        delta = abs(math.degrees(_wrap(heading - origin.heading)))
+        direction = "same" if delta < 45 else "opposite" if delta > 135 else "crossing"
+    return StartRelation(ahead=ahead, left=left, direction=direction)
+
+
+def _spawn_agrees(position: RelativePosition, rel: StartRelation) -> bool:
+    side, direction = rel.side, rel.direction
+    moving = direction != "unknown"
+    lateral = abs(rel.left)
+    rules = {
+        RelativePosition.AHEAD_SAME_LANE: rel.ahead > 0 and side == "centre"
+        and direction != "opposite",
+        RelativePosition.BEHIND_SAME_LANE: rel.ahead < 0 and side == "centre",
+        RelativePosition.ADJACENT_LANE_LEFT: side == "left" and lateral <= NEXT_LANE
+        and direction in ("same", "unknown"),
+        RelativePosition.ADJACENT_LANE_RIGHT: side == "right" and lateral <= NEXT_LANE
+        and direction in ("same", "unknown"),
+        RelativePosition.ONCOMING: rel.ahead > 0 and direction == "opposite"
+        and side != "right",
+        RelativePosition.ROADSIDE_RIGHT: side == "right",
+        RelativePosition.ROADSIDE_LEFT: side == "left",
+        RelativePosition.CROSSING_FROM_LEFT: side == "left"
+        and (direction == "crossing" or not moving),
+        RelativePosition.CROSSING_FROM_RIGHT: side == "right"
+        and (direction == "crossing" or not moving),
+    }
+    return rules[position]
+
+
+def _reach(ego: AgentTrace, adversary: AgentTrace) -> float | None:
+    """Smallest distance from the adversary, at any step, to the path the ego drove."""
+    if not ego.trajectory or not adversary.trajectory:
+        return None
+    from shapely.geometry import LineString, Point
+
+    path_points = [(p.x, p.y) for p in ego.trajectory]
+    path = LineString(path_points) if len(set(path_points)) > 1 else Point(path_points[0])
+    return min(path.distance(Point(p.x, p.y)) for p in adversary.trajectory)
+
+
+# -- the comparison -------------------------------------------------------------------------
+
+def check_conformity(spec: ScenarioSpec, facts: SimulationFacts | None,
+                     map_features: frozenset[str] = frozenset()) -> Conformity:
+    """Compare the spec with what ran; every check says what it expected and saw."""
+    result = Conformity()
+    add = result.checks.append
+    if facts is None:
+        add(ConformityCheck("executed", "a simulation", "none", False))
+        return result
+    ego = next((a for a in facts.agents if a.is_ego), None)
+    adversary = find_adversary(facts.agents)
+    expected_class = spec.adversary_type.scenic_class
+    add(ConformityCheck("adversary_type", expected_class,
+                        adversary.kind if adversary else "no adversary",
+                        adversary is not None and adversary.kind == expected_class))
+    if ego is not None:
+        maneuver = ego_maneuver(ego)
+        add(ConformityCheck("ego_maneuver", spec.ego_maneuver.value,
+                            maneuver.value if maneuver else "unknown",
+                            None if maneuver is None else maneuver is spec.ego_maneuver))
+        add(_road_check(spec.road_type, ego, adversary, map_features))
+    if ego is not None and adversary is not None:
+        relation = start_relation(ego, adversary)
+        add(ConformityCheck(
+            "spawn_position", spec.spawn_position.value,
+            relation.describe() if relation else "unknown",
+            None if relation is None else _spawn_agrees(spec.spawn_position, relation)))
+        reach = _reach(ego, adversary)
+        limit = (ego.width + adversary.width) / 2 + REACH_MARGIN
+        add(ConformityCheck("reaches_ego_path", f"within {limit:.1f} m of the ego's path",
+                            "unknown" if reach is None else f"{reach:.1f} m",
+                            None if reach is None else reach <= limit))
+    weather = facts.params.get("weather")
+    known_weather = weather is not None and not weather.startswith("{")
+    add(ConformityCheck("weather", spec.weather, weather or "unset",
+                        (weather == spec.weather) if known_weather else None))
+    others = [a for a in facts.agents if not a.is_ego and a is not adversary]
+    add(ConformityCheck("participants", f"at least {len(spec.participants)} other object(s)",
+                        f"{len(others)}", len(others) >= len(spec.participants)))
+    return result
+
+
+def _road_check(road: RoadType, ego: AgentTrace, adversary: AgentTrace | None,
+                map_features: frozenset[str]) -> ConformityCheck:
+    junction_steps = ego.intersection_steps + (adversary.intersection_steps if adversary else 0)
+    observed = "through a junction" if junction_steps else "no junction"
+    if road in (RoadType.INTERSECTION, RoadType.T_JUNCTION):
+        return ConformityCheck("road_type", road.value, observed, junction_steps > 0)
+    if road is RoadType.HIGHWAY and map_features:
+        on_highway = "highway" in map_features
+        return ConformityCheck("road_type", road.value,
+                               f"{observed}, {'highway' if on_highway else 'no highway'} map",
+                               on_highway and ego.intersection_steps == 0)
+    return ConformityCheck("road_type", road.value, observed, ego.intersection_steps == 0)

@@ -1,0 +1,229 @@
+"""Resumable benchmark: prompts x modes x temperatures x runs through the generator.
+
+Tasks already in the database are skipped, so a killed benchmark resumes where it stopped.
+Each executor process (or Ray actor) keeps one Generator, i.e. one model and one validator,
+for all its tasks; the parent alone writes the database.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+from collections.abc import Callable, Iterator, Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from arise.evaluate.conformity import check_conformity
+from arise.evaluate.criticality import criticality
+from arise.evaluate.prompt_file import BenchPrompt
+from arise.evaluate.records import AttemptRecord, BenchTask, RunRecord
+from arise.evaluate.store import BenchStore
+from arise.generate.options import GenerateOptions, Mode
+from arise.generate.pipeline import Generation, Generator
+
+EXECUTORS = ("local", "ray")
+OnRecord = Callable[[RunRecord], None]
+
+
+@dataclass
+class BenchConfig:
+    prompts: list[BenchPrompt]
+    base: GenerateOptions = field(default_factory=GenerateOptions)
+    modes: list[Mode] = field(default_factory=lambda: [Mode.ARISE])
+    temperatures: list[float] = field(default_factory=lambda: [0.0])
+    runs: int = 1
+    workers: int = 1
+    executor: str = "local"
+    judge: bool = False
+    ray_address: str | None = None
+
+
+def plan(config: BenchConfig) -> list[BenchTask]:
+    """Every task in a stable order: run by run, so an early stop covers all prompts."""
+    return [BenchTask(prompt_id=p.id, category=p.category, description=p.description,
+                      mode=mode.value, temperature=temperature, run_index=run)
+            for run in range(config.runs) for temperature in config.temperatures
+            for mode in config.modes for p in config.prompts]
+
+
+def pending(config: BenchConfig, store: BenchStore) -> list[BenchTask]:
+    done = store.done_keys()
+    return [task for task in plan(config) if task.key not in done]
+
+
+def task_options(base: GenerateOptions, task: BenchTask) -> GenerateOptions:
+    seed = None if base.seed is None else base.seed + task.run_index
+    return base.model_copy(update={"mode": Mode(task.mode), "temperature": task.temperature,
+                                   "run_index": task.run_index, "seed": seed})
+
+
+def task_dir(out_root: Path, task: BenchTask) -> Path:
+    return out_root / "runs" / task.prompt_id / (
+        f"{task.mode}-t{task.temperature:g}-r{task.run_index}")
+
+
+def record_of(task: BenchTask, run: Generation, out_dir: Path | None,
+              map_features: frozenset[str]) -> RunRecord:
+    """The database row of a generation, with its conformity and criticality facts."""
+    facts = run.final_check.simulation if run.final_check and run.ok else None
+    conformity = check_conformity(run.spec, facts, map_features).as_dict() \
+        if run.spec is not None and run.ok else None
+    crit = criticality(facts)
+    return RunRecord(
+        task=task, status=run.status, first_pass_ok=run.first_pass_ok, repairs=run.repairs,
+        llm_calls=run.usage.calls, prompt_tokens=run.usage.prompt_tokens,
+        completion_tokens=run.usage.completion_tokens, seconds=round(run.seconds, 3),
+        message=run.message, out_dir=str(out_dir) if out_dir else None,
+        spec=run.spec.model_dump(mode="json") if run.spec else None,
+        conformity=conformity, criticality=crit.as_dict() if crit else None,
+        attempts=[AttemptRecord(
+            index=a.index, kind=a.kind, ok=a.ok,
+            stage=a.diagnostic.stage.value if a.diagnostic else None,
+            error_type=a.diagnostic.error_type if a.diagnostic else None,
+            message=a.diagnostic.message[:500] if a.diagnostic else None,
+            section=a.diagnostic.section if a.diagnostic else None,
+            check_seconds=round(a.check_seconds, 3), llm_calls=a.llm_usage.calls,
+            tokens=a.llm_usage.total_tokens) for a in run.attempts])
+
+
+class TaskRunner:
+    """Runs tasks one after another with one Generator; lives in whichever process runs it."""
+
+    def __init__(self, base: GenerateOptions, out_root: Path, judge: bool = False):
+        self.base = base
+        self.out_root = out_root
+        self.judge = judge
+        self._generator: Generator | None = None
+
+    def run(self, task: BenchTask) -> RunRecord:
+        options = task_options(self.base, task)
+        if self._generator is None:
+            self._generator = Generator(options)
+        generator = self._generator
+        generator.reconfigure(options)
+        out_dir = task_dir(self.out_root, task)
+        generation = generator.generate(task.description, out_dir)
+        features: frozenset[str] = frozenset()
+        if generation.final_check and generation.final_check.map:
+            entry = generator.registry.entries.get(generation.final_check.map.name)
+            features = entry.features if entry else frozenset()
+        record = record_of(task, generation, out_dir, features)
+        if self.judge and generation.ok:
+            record.judge = judge_run(generator, task, out_dir)
+        return record
+
+    def close(self) -> None:
+        if self._generator is not None:
+            self._generator.close()
+            self._generator = None
+
+
+def judge_run(generator: Generator, task: BenchTask, out_dir: Path) -> dict[str, Any]:
+    """SCS of the executed script by the run's own model, or why it could not be judged."""
+    from arise.evaluate.judge import judge_script
+    from arise.llm.types import LLMError
+
+    script = (out_dir / "scenario.scenic").read_text(encoding="utf-8")
+    try:
+        judgement = judge_script(task.description, script, generator.provider,
+                                 temperature=0.0, seed=generator.options.seed)
+    except LLMError as error:
+        return {"scs": None, "error": str(error)}
+    return judgement.as_dict()
+
+
+# -- executors ------------------------------------------------------------------------------
+
+def run_local(tasks: Sequence[BenchTask], config: BenchConfig, out_root: Path
+              ) -> Iterator[RunRecord]:
+    if config.workers <= 1:
+        runner = TaskRunner(config.base, out_root, config.judge)
+        try:
+            for task in tasks:
+                yield runner.run(task)
+        finally:
+            runner.close()
+        return
+    import multiprocessing
+    from concurrent.futures import ProcessPoolExecutor, as_completed
+
+    context = multiprocessing.get_context("spawn")
+    with ProcessPoolExecutor(max_workers=config.workers, mp_context=context,
+                             initializer=_init_process,
+                             initargs=(config.base.model_dump_json(), str(out_root),
+                                       config.judge)) as pool:
+        futures = [pool.submit(_run_in_process, json.dumps(task.__dict__)) for task in tasks]
+        for future in as_completed(futures):
+            yield RunRecord.from_dict(future.result())
+
+
+_PROCESS_RUNNER: TaskRunner | None = None
+
+
+def _init_process(base_json: str, out_root: str, judge: bool) -> None:
+    global _PROCESS_RUNNER
+    _PROCESS_RUNNER = TaskRunner(GenerateOptions.model_validate_json(base_json),
+                                 Path(out_root), judge)
+
+
+def _run_in_process(task_json: str) -> dict[str, Any]:
+    assert _PROCESS_RUNNER is not None
+    return _PROCESS_RUNNER.run(BenchTask(**json.loads(task_json))).as_dict()
+
+
+class _RayActor:
+    """A TaskRunner inside a Ray actor (created through `ray.remote` at run time)."""
+
+    def __init__(self, base_json: str, out_root: str, judge: bool):
+        self.runner = TaskRunner(GenerateOptions.model_validate_json(base_json),
+                                 Path(out_root), judge)
+
+    def run(self, task_json: str) -> dict[str, Any]:
+        return self.runner.run(BenchTask(**json.loads(task_json))).as_dict()
+
+
+def run_ray(tasks: Sequence[BenchTask], config: BenchConfig, out_root: Path
+            ) -> Iterator[RunRecord]:
+    try:
+        import ray
+        from ray.util import ActorPool
+    except ImportError as error:
+        raise RuntimeError("the Ray executor needs Ray: pip install 'arise[ray]'") from error
+    started_here = not ray.is_initialized()
+    if started_here:
+        ray.init(address=config.ray_address, include_dashboard=False,
+                 log_to_driver=False, ignore_reinit_error=True,
+                 runtime_env={"env_vars": {k: v for k, v in os.environ.items()
+                                           if k.startswith("ARISE_")}})
+    try:
+        actor_class = ray.remote(num_cpus=1)(_RayActor)
+        actors = [actor_class.remote(config.base.model_dump_json(), str(out_root), config.judge)
+                  for _ in range(max(1, config.workers))]
+        pool = ActorPool(actors)
+        payloads = [json.dumps(task.__dict__) for task in tasks]
+        for result in pool.map_unordered(lambda actor, payload: actor.run.remote(payload),
+                                         payloads):
+            yield RunRecord.from_dict(result)
+    finally:
+        if started_here:
+            ray.shutdown()
+
+
+def run_bench(config: BenchConfig, store: BenchStore, out_root: Path,
+              on_record: OnRecord | None = None) -> list[RunRecord]:
+    """Run what the database does not hold yet; every finished run is saved at once."""
+    if config.executor not in EXECUTORS:
+        raise ValueError(f"unknown executor '{config.executor}': use one of {EXECUTORS}")
+    store.set_meta(options=config.base.model_dump(mode="json"),
+                   modes=[m.value for m in config.modes], temperatures=config.temperatures,
+                   runs=config.runs, prompts=len(config.prompts))
+    tasks = pending(config, store)
+    executor = run_ray if config.executor == "ray" else run_local
+    finished = []
+    for record in executor(tasks, config, out_root):
+        store.save(record)
+        finished.append(record)
+        if on_record:
+            on_record(record)
+    return finished
