@@ -27,5 +27,7 @@ AdvSpawnPt = new OrientedPoint following roadDirection from EgoSpawnPt for globa
 AdvAgent = new Pedestrian right of AdvSpawnPt by 4, facing 90 deg relative to AdvSpawnPt.heading, with regionContainedIn None, with behavior AdversaryBehavior()
 # END SPAWN
 # BEGIN REQUIREMENTS
+# The crossing point must still be on the ego's lane (not past the end of the road).
+require AdvSpawnPt in egoLane
 terminate when (distance to EgoSpawnPt) > 60
 # END REQUIREMENTS
