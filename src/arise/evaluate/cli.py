@@ -19,7 +19,14 @@ from rich.progress import (
 from arise.evaluate.prompt_file import PromptFileError, read_prompts
 from arise.evaluate.records import RunRecord
 from arise.evaluate.report import write_report
-from arise.evaluate.runner import EXECUTORS, BenchConfig, pending, run_bench
+from arise.evaluate.runner import (
+    EXECUTORS,
+    BenchConfig,
+    judge_missing,
+    pending,
+    run_bench,
+    unjudged,
+)
 from arise.evaluate.store import BenchStore, BenchStoreError
 from arise.generate.options import GenerateOptions, Mode
 
@@ -110,6 +117,8 @@ def bench_command(
     map_dir: Annotated[str | None, typer.Option(help="Extra maps (e.g. CARLA towns).")] = None,
     replay: Annotated[str | None, typer.Option(help="Answer LLM calls from this cassette.")]
     = None,
+    cache: Annotated[bool, typer.Option("--cache", help="Reuse cached model answers (off by "
+                                        "default: a benchmark measures the model).")] = False,
 ) -> None:
     if executor not in EXECUTORS:
         errors.print(f"[red]error:[/red] --executor is one of {', '.join(EXECUTORS)}")
@@ -120,7 +129,8 @@ def bench_command(
         errors.print(f"[red]error:[/red] {error}")
         raise typer.Exit(2) from None
     base = GenerateOptions(provider=provider, model=model, max_repairs=max_repairs, seed=seed,
-                           map_dir=map_dir, replay=replay, semantic_gate=semantic_gate)
+                           map_dir=map_dir, replay=replay, semantic_gate=semantic_gate,
+                           cache=cache)
     config = BenchConfig(prompts=items[:limit] if limit else items, base=base,
                          modes=_modes(modes), temperatures=_temperatures(temperatures),
                          runs=runs, workers=workers, executor=executor, judge=judge,
@@ -135,7 +145,11 @@ def bench_command(
         total = len(todo) + len(store.done_keys())
         console.print(f"{len(todo)} run(s) to do, {total - len(todo)} already in "
                       f"{out / 'bench.sqlite'}")
+        if judge:
+            console.print(f"{len(unjudged(config, store))} finished run(s) to judge first")
         try:
+            if judge:
+                _judge_with_bar(config, store, out)
             _run_with_bar(config, store, out, len(todo))
         except KeyboardInterrupt:
             errors.print("\ninterrupted: finished runs are saved; run the same command to "
@@ -148,6 +162,14 @@ def bench_command(
         written = write_report(records, out / "report", store.meta())
     executed = sum(r.ok for r in records)
     console.print(f"{executed} of {len(records)} runs executable; report: {written[0]}")
+
+
+def _judge_with_bar(config: BenchConfig, store: BenchStore, out: Path) -> None:
+    columns = [TextColumn("judging"), BarColumn(), MofNCompleteColumn(), TimeElapsedColumn(),
+               TextColumn("ETA"), TimeRemainingColumn()]
+    with Progress(*columns, console=console, disable=not console.is_terminal) as bar:
+        task = bar.add_task("judge", total=len(unjudged(config, store)))
+        judge_missing(config, store, out, lambda record: bar.update(task, advance=1))
 
 
 def _run_with_bar(config: BenchConfig, store: BenchStore, out: Path, count: int) -> None:

@@ -93,7 +93,7 @@ class TaskRunner:
     def __init__(self, base: GenerateOptions, out_root: Path, judge: bool = False):
         self.base = base
         self.out_root = out_root
-        self.judge = judge
+        self.judging = judge
         self._generator: Generator | None = None
 
     def run(self, task: BenchTask) -> RunRecord:
@@ -109,9 +109,17 @@ class TaskRunner:
             entry = generator.registry.entries.get(generation.final_check.map.name)
             features = entry.features if entry else frozenset()
         record = record_of(task, generation, out_dir, features)
-        if self.judge and generation.ok:
+        if self.judging and generation.ok:
             record.judge = judge_run(generator, task, out_dir)
         return record
+
+    def judge(self, record: RunRecord) -> dict[str, Any]:
+        """Judge a run finished earlier (a benchmark first run without --judge)."""
+        options = task_options(self.base, record.task)
+        if self._generator is None:
+            self._generator = Generator(options)
+        self._generator.reconfigure(options)
+        return judge_run(self._generator, record.task, Path(record.out_dir or "."))
 
     def close(self) -> None:
         if self._generator is not None:
@@ -124,11 +132,14 @@ def judge_run(generator: Generator, task: BenchTask, out_dir: Path) -> dict[str,
     from arise.evaluate.judge import judge_script
     from arise.llm.types import LLMError
 
-    script = (out_dir / "scenario.scenic").read_text(encoding="utf-8")
+    try:
+        script = (out_dir / "scenario.scenic").read_text(encoding="utf-8")
+    except OSError as error:
+        return {"scs": None, "error": f"no script to judge: {error}"}
     try:
         judgement = judge_script(task.description, script, generator.provider,
                                  temperature=0.0, seed=generator.options.seed)
-    except LLMError as error:
+    except (LLMError, ValueError) as error:
         return {"scs": None, "error": str(error)}
     return judgement.as_dict()
 
@@ -226,4 +237,28 @@ def run_bench(config: BenchConfig, store: BenchStore, out_root: Path,
         finished.append(record)
         if on_record:
             on_record(record)
+    if config.judge:
+        judge_missing(config, store, out_root, on_record)
     return finished
+
+
+def unjudged(config: BenchConfig, store: BenchStore) -> list[RunRecord]:
+    planned = {task.key for task in plan(config)}
+    return [r for r in store.runs() if r.ok and r.judge is None and r.task.key in planned]
+
+
+def judge_missing(config: BenchConfig, store: BenchStore, out_root: Path,
+                  on_judged: OnRecord | None = None) -> int:
+    """Score executed runs that have no SCS yet, in this process; each is saved at once."""
+    todo = unjudged(config, store)
+    if not todo:
+        return 0
+    runner = TaskRunner(config.base, out_root, judge=True)
+    try:
+        for record in todo:
+            store.update_judge(record.task, runner.judge(record))
+            if on_judged:
+                on_judged(record)
+    finally:
+        runner.close()
+    return len(todo)
