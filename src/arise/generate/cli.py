@@ -81,6 +81,9 @@ def generate_command(
     = None,
     replay: Annotated[str | None, typer.Option(help="Answer LLM calls from this cassette.")]
     = None,
+    semantic_gate: Annotated[bool, typer.Option(
+        "--semantic-gate", help="Also require the deterministic conformity check to agree "
+        "with the description (adversary, start side, maneuver, road, weather).")] = False,
     as_json: Annotated[bool, typer.Option("--json", help="Print the reports as JSON.")] = False,
 ) -> None:
     descriptions = _read_descriptions(description, file)
@@ -93,7 +96,8 @@ def generate_command(
     options = GenerateOptions(mode=mode, provider=provider, model=model, temperature=temperature,
                               topk=topk, max_repairs=max_repairs, spawn_attempts=spawn_attempts,
                               simulator=simulator, map_dir=map_dir, seed=seed,
-                              cache=False if no_cache else None, record=record, replay=replay)
+                              cache=False if no_cache else None, record=record, replay=replay,
+                              semantic_gate=semantic_gate)
     runs: list[Generation] = []
     single = len(descriptions) == 1 and count == 1
     try:

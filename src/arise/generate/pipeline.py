@@ -92,7 +92,16 @@ class Generation:
             "seconds": round(self.seconds, 2),
             "simulation": (self.final_check.simulation.model_dump(mode="json", exclude={"agents"})
                            if self.final_check and self.final_check.simulation else None),
+            "conformity": self.conformity(),
         }
+
+    def conformity(self) -> dict[str, Any] | None:
+        """The deterministic conformity check of the script that ran (None if none ran)."""
+        if not self.ok or self.spec is None or self.final_check is None:
+            return None
+        from arise.evaluate.conformity import check_conformity
+
+        return check_conformity(self.spec, self.final_check.simulation).as_dict()
 
     def summary(self) -> str:
         if self.status == "executed":
