@@ -169,7 +169,15 @@ def _judge_with_bar(config: BenchConfig, store: BenchStore, out: Path) -> None:
                TextColumn("ETA"), TimeRemainingColumn()]
     with Progress(*columns, console=console, disable=not console.is_terminal) as bar:
         task = bar.add_task("judge", total=len(unjudged(config, store)))
-        judge_missing(config, store, out, lambda record: bar.update(task, advance=1))
+
+        def advance(record: RunRecord) -> None:
+            bar.update(task, advance=1)
+            if not console.is_terminal:
+                scs = record.scs
+                console.print(f"judged {record.task.label()}: SCS "
+                              f"{'-' if scs is None else f'{scs:.2f}'}")
+
+        judge_missing(config, store, out, advance)
 
 
 def _run_with_bar(config: BenchConfig, store: BenchStore, out: Path, count: int) -> None:

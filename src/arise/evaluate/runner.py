@@ -256,7 +256,8 @@ def judge_missing(config: BenchConfig, store: BenchStore, out_root: Path,
     runner = TaskRunner(config.base, out_root, judge=True)
     try:
         for record in todo:
-            store.update_judge(record.task, runner.judge(record))
+            record.judge = runner.judge(record)
+            store.update_judge(record.task, record.judge)
             if on_judged:
                 on_judged(record)
     finally:
