@@ -30,23 +30,27 @@ errors = Console(stderr=True, soft_wrap=True)
 
 JUDGE_HELP = """Score how well a Scenic script says what its description says (SCS).
 
-A language model rates seven criteria from 0 to 10 (adversary_type, behavior, geometry,
-weather, participants, requirements, spawn); SCS is their weighted sum divided by 10 x the
-sum of the weights (all weights 1: sum / 70). SCRIPT is a .scenic file, or a folder written
-by `arise generate` (scenario.scenic + report.json): then DESCRIPTION "-" takes the
-description from report.json. --repeat N judges the same pair N times (seed, seed+1, ...)
-and shows min/max/mean/std (population std). Exit codes: 0 judged, 1 the model failed
-or could not be reached, 2 a mistake in the arguments.
+A language model rates seven criteria from 0 to 10: adversary_type, behavior,
+geometry, weather, participants, requirements, spawn. SCS is the weighted sum
+of the scores over 10 x the sum of the weights (equal weights: sum / 70).
+
+SCRIPT is a .scenic file, or a folder written by `arise generate`
+(scenario.scenic + report.json); with such a folder, DESCRIPTION "-" takes the
+description from its report.json.
+
+--repeat N judges the same pair N times (seed, seed+1, ...) and shows
+min/max/mean/std (population std). Exit codes: 0 judged, 1 the model failed or
+could not be reached, 2 a mistake in the arguments.
 
 Examples:
 
-  arise judge "A pedestrian crosses in front of the ego and stops." scenario.scenic
+  arise judge "A pedestrian crosses in front of the ego and stops." x.scenic
 
-  arise judge - out/                     # a generation folder: description from report.json
+  arise judge - out/
 
   arise judge - out/ --repeat 10 --temperature 0.7 --json
 
-  arise judge - out/ --weights adversary_type=2,behavior=1.5 --provider openai
+  arise judge - out/ --weights adversary_type=2,behavior=1.5 --provider gemini
 """
 
 
@@ -54,8 +58,9 @@ class UserMistake(Exception):
     """A bad argument: one line on stderr and exit code 2."""
 
 
-def load_pair(description: str, script: Path) -> tuple[str, str]:
-    """(description, script text) from the arguments; a generation folder supplies both."""
+def load_pair(description: str, script: Path) -> tuple[str, str, Path]:
+    """(description, script text, script file) from the arguments; a generation folder
+    supplies the script and, for DESCRIPTION "-", the description."""
     if script.is_dir():
         scenic = script / "scenario.scenic"
         if not scenic.is_file():
@@ -87,7 +92,7 @@ def load_pair(description: str, script: Path) -> tuple[str, str]:
     problem = input_problem(description, text)
     if problem:
         raise UserMistake(problem)
-    return description, text
+    return description, text, script
 
 
 def judge_command(
@@ -123,7 +128,7 @@ def judge_command(
             chosen = parse_weights(weights)
         except WeightsError as error:
             raise UserMistake(str(error)) from None
-        text_description, script_text = load_pair(description, script)
+        text_description, script_text, script = load_pair(description, script)
     except UserMistake as error:
         errors.print(f"[red]error:[/red] {escape(str(error))}", highlight=False)
         raise typer.Exit(2) from None
