@@ -112,6 +112,10 @@ def bench_command(
     limit: Annotated[int | None, typer.Option(help="Only the first N prompts.")] = None,
     judge: Annotated[bool, typer.Option("--judge", help="Score executed scripts with the "
                                         "LLM judge (SCS).")] = False,
+    judge_provider: Annotated[str | None, typer.Option(
+        help="Provider of the judge (default: the generating model; a small local model is "
+        "a poor judge, see docs/judge.md).")] = None,
+    judge_model: Annotated[str | None, typer.Option(help="Model of the judge.")] = None,
     semantic_gate: Annotated[bool, typer.Option(
         "--semantic-gate", help="A script must also pass the conformity check.")] = False,
     map_dir: Annotated[str | None, typer.Option(help="Extra maps (e.g. CARLA towns).")] = None,
@@ -134,6 +138,7 @@ def bench_command(
     config = BenchConfig(prompts=items[:limit] if limit else items, base=base,
                          modes=_modes(modes), temperatures=_temperatures(temperatures),
                          runs=runs, workers=workers, executor=executor, judge=judge,
+                         judge_provider=judge_provider, judge_model=judge_model,
                          ray_address=ray_address)
     try:
         store = BenchStore(out / "bench.sqlite")

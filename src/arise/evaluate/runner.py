@@ -21,6 +21,7 @@ from arise.evaluate.records import AttemptRecord, BenchTask, RunRecord
 from arise.evaluate.store import BenchStore
 from arise.generate.options import GenerateOptions, Mode
 from arise.generate.pipeline import Generation, Generator
+from arise.llm.accounting import UsageLedger
 
 EXECUTORS = ("local", "ray")
 OnRecord = Callable[[RunRecord], None]
@@ -36,6 +37,9 @@ class BenchConfig:
     workers: int = 1
     executor: str = "local"
     judge: bool = False
+    # The judge's own model (the paper judges with another model than it generates with).
+    judge_provider: str | None = None
+    judge_model: str | None = None
     ray_address: str | None = None
 
 
@@ -90,11 +94,27 @@ def record_of(task: BenchTask, run: Generation, out_dir: Path | None,
 class TaskRunner:
     """Runs tasks one after another with one Generator; lives in whichever process runs it."""
 
-    def __init__(self, base: GenerateOptions, out_root: Path, judge: bool = False):
+    def __init__(self, base: GenerateOptions, out_root: Path, judge: bool = False,
+                 judge_provider: str | None = None, judge_model: str | None = None):
         self.base = base
         self.out_root = out_root
         self.judging = judge
+        self.judge_provider = judge_provider
+        self.judge_model = judge_model
         self._generator: Generator | None = None
+        self._judge_llm: UsageLedger | None = None
+
+    def judge_llm(self, generator: Generator) -> UsageLedger:
+        """The generator's model, unless the benchmark names a judge of its own."""
+        if not (self.judge_provider or self.judge_model):
+            return generator.provider
+        if self._judge_llm is None:
+            from arise.llm.registry import get_provider
+
+            overrides: dict[str, Any] = {"model": self.judge_model} if self.judge_model else {}
+            self._judge_llm = get_provider(self.judge_provider, cache=self.base.cache,
+                                           **overrides)
+        return self._judge_llm
 
     def run(self, task: BenchTask) -> RunRecord:
         options = task_options(self.base, task)
@@ -110,7 +130,7 @@ class TaskRunner:
             features = entry.features if entry else frozenset()
         record = record_of(task, generation, out_dir, features)
         if self.judging and generation.ok:
-            record.judge = judge_run(generator, task, out_dir)
+            record.judge = judge_run(self.judge_llm(generator), generator, task, out_dir)
         return record
 
     def judge(self, record: RunRecord) -> dict[str, Any]:
@@ -119,16 +139,21 @@ class TaskRunner:
         if self._generator is None:
             self._generator = Generator(options)
         self._generator.reconfigure(options)
-        return judge_run(self._generator, record.task, Path(record.out_dir or "."))
+        return judge_run(self.judge_llm(self._generator), self._generator, record.task,
+                         Path(record.out_dir or "."))
 
     def close(self) -> None:
         if self._generator is not None:
             self._generator.close()
             self._generator = None
+        if self._judge_llm is not None:
+            self._judge_llm.close()
+            self._judge_llm = None
 
 
-def judge_run(generator: Generator, task: BenchTask, out_dir: Path) -> dict[str, Any]:
-    """SCS of the executed script by the run's own model, or why it could not be judged."""
+def judge_run(judge: UsageLedger, generator: Generator, task: BenchTask, out_dir: Path
+              ) -> dict[str, Any]:
+    """SCS of the executed script, or why it could not be judged."""
     from arise.evaluate.judge import judge_script
     from arise.llm.types import LLMError
 
@@ -137,7 +162,7 @@ def judge_run(generator: Generator, task: BenchTask, out_dir: Path) -> dict[str,
     except OSError as error:
         return {"scs": None, "error": f"no script to judge: {error}"}
     try:
-        judgement = judge_script(task.description, script, generator.provider,
+        judgement = judge_script(task.description, script, judge,
                                  temperature=0.0, seed=generator.options.seed)
     except (LLMError, ValueError) as error:
         return {"scs": None, "error": str(error)}
@@ -149,7 +174,8 @@ def judge_run(generator: Generator, task: BenchTask, out_dir: Path) -> dict[str,
 def run_local(tasks: Sequence[BenchTask], config: BenchConfig, out_root: Path
               ) -> Iterator[RunRecord]:
     if config.workers <= 1:
-        runner = TaskRunner(config.base, out_root, config.judge)
+        runner = TaskRunner(config.base, out_root, config.judge, config.judge_provider,
+                            config.judge_model)
         try:
             for task in tasks:
                 yield runner.run(task)
@@ -163,7 +189,8 @@ def run_local(tasks: Sequence[BenchTask], config: BenchConfig, out_root: Path
     with ProcessPoolExecutor(max_workers=config.workers, mp_context=context,
                              initializer=_init_process,
                              initargs=(config.base.model_dump_json(), str(out_root),
-                                       config.judge)) as pool:
+                                       config.judge, config.judge_provider,
+                                       config.judge_model)) as pool:
         futures = [pool.submit(_run_in_process, json.dumps(task.__dict__)) for task in tasks]
         for future in as_completed(futures):
             yield RunRecord.from_dict(future.result())
@@ -172,10 +199,11 @@ def run_local(tasks: Sequence[BenchTask], config: BenchConfig, out_root: Path
 _PROCESS_RUNNER: TaskRunner | None = None
 
 
-def _init_process(base_json: str, out_root: str, judge: bool) -> None:
+def _init_process(base_json: str, out_root: str, judge: bool, judge_provider: str | None,
+                  judge_model: str | None) -> None:
     global _PROCESS_RUNNER
     _PROCESS_RUNNER = TaskRunner(GenerateOptions.model_validate_json(base_json),
-                                 Path(out_root), judge)
+                                 Path(out_root), judge, judge_provider, judge_model)
 
 
 def _run_in_process(task_json: str) -> dict[str, Any]:
@@ -186,9 +214,10 @@ def _run_in_process(task_json: str) -> dict[str, Any]:
 class _RayActor:
     """A TaskRunner inside a Ray actor (created through `ray.remote` at run time)."""
 
-    def __init__(self, base_json: str, out_root: str, judge: bool):
+    def __init__(self, base_json: str, out_root: str, judge: bool,
+                 judge_provider: str | None, judge_model: str | None):
         self.runner = TaskRunner(GenerateOptions.model_validate_json(base_json),
-                                 Path(out_root), judge)
+                                 Path(out_root), judge, judge_provider, judge_model)
 
     def run(self, task_json: str) -> dict[str, Any]:
         return self.runner.run(BenchTask(**json.loads(task_json))).as_dict()
@@ -209,7 +238,8 @@ def run_ray(tasks: Sequence[BenchTask], config: BenchConfig, out_root: Path
                                            if k.startswith("ARISE_")}})
     try:
         actor_class = ray.remote(num_cpus=1)(_RayActor)
-        actors = [actor_class.remote(config.base.model_dump_json(), str(out_root), config.judge)
+        actors = [actor_class.remote(config.base.model_dump_json(), str(out_root), config.judge,
+                                     config.judge_provider, config.judge_model)
                   for _ in range(max(1, config.workers))]
         pool = ActorPool(actors)
         payloads = [json.dumps(task.__dict__) for task in tasks]
@@ -253,7 +283,8 @@ def judge_missing(config: BenchConfig, store: BenchStore, out_root: Path,
     todo = unjudged(config, store)
     if not todo:
         return 0
-    runner = TaskRunner(config.base, out_root, judge=True)
+    runner = TaskRunner(config.base, out_root, True, config.judge_provider,
+                        config.judge_model)
     try:
         for record in todo:
             record.judge = runner.judge(record)
