@@ -24,6 +24,7 @@ from arise.evaluate.runner import (
     BenchConfig,
     judge_missing,
     pending,
+    recheck,
     run_bench,
     unjudged,
 )
@@ -207,12 +208,19 @@ def report_command(
     out: Annotated[Path | None, typer.Option("-o", "--out", help="Report folder (default: "
                                              "beside the database, report/).")] = None,
     title: Annotated[str, typer.Option(help="Title of report.md.")] = "arise benchmark report",
+    recheck_runs: Annotated[bool, typer.Option(
+        "--recheck", help="First validate every executed run's script again and refresh its "
+        "conformity and criticality with the current checks (needs the runs' folders).")]
+    = False,
 ) -> None:
     if not database.is_file():
         errors.print(f"[red]error:[/red] no such database: {database}")
         raise typer.Exit(2)
     try:
         with BenchStore(database) as store:
+            if recheck_runs:
+                count = recheck(store)
+                console.print(f"re-checked {count} executed run(s)")
             records, meta = store.runs(), store.meta()
     except BenchStoreError as error:
         errors.print(f"[red]error:[/red] {error}")

@@ -108,7 +108,9 @@ def ego_maneuver(ego: AgentTrace) -> EgoManeuver | None:
         return EgoManeuver.TURN_LEFT
     if turn < -TURN_DEGREES:
         return EgoManeuver.TURN_RIGHT
-    _, lateral = _frame(start, end.x, end.y)
+    if ego.lane_changes is not None:
+        return EgoManeuver.CHANGE_LANE if ego.lane_changes else EgoManeuver.GO_STRAIGHT
+    _, lateral = _frame(start, end.x, end.y)  # no map to ask: sideways drift is the sign
     return EgoManeuver.CHANGE_LANE if abs(lateral) > LANE_CHANGE_METRES \
         else EgoManeuver.GO_STRAIGHT
 

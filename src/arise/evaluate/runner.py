@@ -294,3 +294,42 @@ def judge_missing(config: BenchConfig, store: BenchStore, out_root: Path,
     finally:
         runner.close()
     return len(todo)
+
+
+def recheck(store: BenchStore, on_record: OnRecord | None = None) -> int:
+    """Validate each executed run's saved script again (same seed, so the same scene) and
+    refresh its conformity and criticality: old runs get the current checks without
+    generating anything again."""
+    from arise.generate.pipeline import SAMPLE_ITERATIONS
+    from arise.generate.spec import ScenarioSpec
+    from arise.maps.registry import MapRegistry
+    from arise.validate import CheckOptions, WorkerPool, check
+
+    meta_options = store.meta().get("options")
+    base = GenerateOptions.model_validate(meta_options if isinstance(meta_options, dict)
+                                          else {})
+    registry = MapRegistry(base.map_dir)
+    count = 0
+    with WorkerPool(size=1) as pool:
+        for record in store.runs():
+            script = Path(record.out_dir or "") / "scenario.scenic"
+            if not record.ok or record.spec is None or not script.is_file():
+                continue
+            options = task_options(base, record.task)
+            result = check(script, CheckOptions(
+                simulator=options.simulator, map_dir=options.map_dir, steps=options.steps,
+                spawn_attempts=options.spawn_attempts, seed=options.seed,
+                sample_iterations=SAMPLE_ITERATIONS, timeout=options.check_timeout),
+                pool=pool, registry=registry)
+            entry = registry.entries.get(result.map.name) if result.map else None
+            facts = result.simulation if result.ok else None
+            record.conformity = check_conformity(
+                ScenarioSpec.model_validate(record.spec), facts,
+                entry.features if entry else frozenset()).as_dict()
+            crit = criticality(facts)
+            record.criticality = crit.as_dict() if crit else None
+            store.save(record)
+            count += 1
+            if on_record:
+                on_record(record)
+    return count

@@ -272,6 +272,7 @@ def _agent_traces(simulation: Any) -> list[AgentTrace]:
             width=float(obj.width), length=float(obj.length), is_ego=is_ego,
             behavior=type(behavior).__name__ if behavior is not None else None,
             intersection_steps=_steps_in_junctions(simulation, points),
+            lane_changes=_lane_changes(simulation, points),
             trajectory=points))
     return traces
 
@@ -285,6 +286,26 @@ def _steps_in_junctions(simulation: Any, points: list[TracePoint]) -> int:
         return sum(bool(region.containsPoint((p.x, p.y))) for p in points)
     except Exception:  # an odd region must not cost the facts of a run that worked
         return 0
+
+
+def _lane_changes(simulation: Any, points: list[TracePoint]) -> int | None:
+    """Changes into another lane of the same lane group, sampled every half second; a road
+    that merely curves or continues into its successor is no lane change."""
+    network = getattr(getattr(simulation.scene, "workspace", None), "network", None)
+    if network is None:
+        return None
+    changes, previous = 0, None
+    try:
+        for point in points[::5]:
+            lane = network.laneAt((point.x, point.y))
+            if lane is None:
+                continue
+            if previous is not None and lane is not previous and lane.group is previous.group:
+                changes += 1
+            previous = lane
+    except Exception:  # an odd network must not cost the facts of a run that worked
+        return None
+    return changes
 
 
 def _scene_params(scene: Any) -> dict[str, str]:
