@@ -121,3 +121,31 @@ def test_user_mistakes_get_clear_errors(tmp_path: Path) -> None:
     assert empty.exit_code == 2 and "no such database" in empty.output
     help_text = runner.invoke(app, ["bench", "--help"])
     assert help_text.exit_code == 0 and "Examples" in help_text.output
+
+
+@pytest.mark.slow
+def test_judge_pass_scores_finished_runs_later(tmp_path: Path) -> None:
+    # The judge cassette was recorded from the embedded Qwen2.5-Coder-1.5B with
+    # `arise judge ... --record` on the script this replayed generation writes.
+    prompts = tmp_path / "prompts.jsonl"
+    prompts.write_text(json.dumps({"id": "ft", "category": "cyclist",
+                                   "description": CASES["first_try"].description}) + "\n")
+    cassette = tmp_path / "both.jsonl"
+    cassette.write_text(CASES["first_try"].cassette.read_text() + (
+        Path(__file__).resolve().parents[1] / "cassettes" / "judge" / "bench_first_try.jsonl"
+    ).read_text())
+    out = tmp_path / "bench"
+    command = ["bench", str(prompts), "--out", str(out), "--replay", str(cassette)]
+    assert runner.invoke(app, command).exit_code == 0
+    judged = runner.invoke(app, [*command, "--judge"])
+    assert judged.exit_code == 0, judged.output
+    assert "0 run(s) to do, 1 already" in judged.output
+    assert "1 finished run(s) to judge first" in judged.output
+    with BenchStore(out / "bench.sqlite") as store:
+        [record] = store.runs()
+    assert record.judge is not None and record.scs is not None
+    names = {criterion["name"] for criterion in record.judge["criteria"]}
+    assert names == {"adversary_type", "behavior", "geometry", "weather", "participants",
+                     "requirements", "spawn"}
+    assert record.scs == pytest.approx(sum(c["score"] for c in record.judge["criteria"]) / 70)
+    assert "| SCS | arise | 0 |" in (out / "report" / "report.md").read_text()
