@@ -30,6 +30,7 @@ from arise.evaluate.runner import (
 )
 from arise.evaluate.store import BenchStore, BenchStoreError
 from arise.generate.options import GenerateOptions, Mode
+from arise.llm.cli_options import ModelOption, ProviderOption, ReplayOption
 
 console = Console(soft_wrap=True)
 errors = Console(stderr=True, soft_wrap=True)
@@ -100,9 +101,8 @@ def bench_command(
     modes: Annotated[str, typer.Option(help="Comma-separated: arise, single-pass, chatscene.")]
     = "arise",
     temperatures: Annotated[str, typer.Option(help="Comma-separated temperatures.")] = "0",
-    provider: Annotated[str | None, typer.Option(help="LLM provider (see `arise llm info`).")]
-    = None,
-    model: Annotated[str | None, typer.Option(help="Model name for the provider.")] = None,
+    provider: ProviderOption = None,
+    model: ModelOption = None,
     workers: Annotated[int, typer.Option(help="Parallel generators (each loads the model).",
                                          min=1)] = 1,
     executor: Annotated[str, typer.Option(help="local (processes) or ray.")] = "local",
@@ -120,8 +120,7 @@ def bench_command(
     semantic_gate: Annotated[bool, typer.Option(
         "--semantic-gate", help="A script must also pass the conformity check.")] = False,
     map_dir: Annotated[str | None, typer.Option(help="Extra maps (e.g. CARLA towns).")] = None,
-    replay: Annotated[str | None, typer.Option(help="Answer LLM calls from this cassette.")]
-    = None,
+    replay: ReplayOption = None,
     cache: Annotated[bool, typer.Option("--cache", help="Reuse cached model answers (off by "
                                         "default: a benchmark measures the model).")] = False,
 ) -> None:

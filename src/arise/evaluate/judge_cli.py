@@ -22,6 +22,13 @@ from arise.evaluate.judge import (
     judge_script,
     parse_weights,
 )
+from arise.llm.cli_options import (
+    ModelOption,
+    NoCacheOption,
+    ProviderOption,
+    RecordOption,
+    ReplayOption,
+)
 from arise.llm.registry import get_provider
 from arise.llm.types import LLMError
 
@@ -106,17 +113,13 @@ def judge_command(
     weights: Annotated[str | None, typer.Option(
         help="Criterion weights, e.g. adversary_type=2,behavior=1.5 (the rest stay 1).")]
     = None,
-    provider: Annotated[str | None, typer.Option(help="LLM provider (see `arise llm info`).")]
-    = None,
-    model: Annotated[str | None, typer.Option(help="Model name for the provider.")] = None,
+    provider: ProviderOption = None,
+    model: ModelOption = None,
     temperature: Annotated[float, typer.Option(help="Sampling temperature.")] = 0.0,
     seed: Annotated[int, typer.Option(help="Seed for the model (repeat i uses seed + i).")] = 0,
-    no_cache: Annotated[bool, typer.Option("--no-cache", help="Do not use the LLM cache.")]
-    = False,
-    record: Annotated[str | None, typer.Option(help="Record LLM calls to this cassette.")]
-    = None,
-    replay: Annotated[str | None, typer.Option(help="Answer LLM calls from this cassette.")]
-    = None,
+    no_cache: NoCacheOption = False,
+    record: RecordOption = None,
+    replay: ReplayOption = None,
     as_json: Annotated[bool, typer.Option("--json", help="Print the result as JSON.")] = False,
 ) -> None:
     try:

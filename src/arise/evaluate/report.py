@@ -184,7 +184,7 @@ def plot_esr(runs: Sequence[RunRecord], path: Path) -> None:
     import matplotlib.pyplot as plt
 
     names = ordered_categories(runs)
-    bars = [c for c in cells(runs, ["ESR single", "ESR total"])]
+    bars = cells(runs, ["ESR single", "ESR total"])
     figure, axis = plt.subplots(figsize=(max(6.0, 1.1 * len(names) + 2), 4))
     width = 0.8 / max(1, len(bars))
     for i, cell in enumerate(bars):

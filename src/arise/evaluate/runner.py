@@ -14,7 +14,6 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from arise.evaluate.conformity import check_conformity
 from arise.evaluate.criticality import criticality
 from arise.evaluate.prompt_file import BenchPrompt
 from arise.evaluate.records import AttemptRecord, BenchTask, RunRecord
@@ -67,12 +66,9 @@ def task_dir(out_root: Path, task: BenchTask) -> Path:
         f"{task.mode}-t{task.temperature:g}-r{task.run_index}")
 
 
-def record_of(task: BenchTask, run: Generation, out_dir: Path | None,
-              map_features: frozenset[str]) -> RunRecord:
+def record_of(task: BenchTask, run: Generation, out_dir: Path | None) -> RunRecord:
     """The database row of a generation, with its conformity and criticality facts."""
     facts = run.final_check.simulation if run.final_check and run.ok else None
-    conformity = check_conformity(run.spec, facts, map_features).as_dict() \
-        if run.spec is not None and run.ok else None
     crit = criticality(facts)
     return RunRecord(
         task=task, status=run.status, first_pass_ok=run.first_pass_ok, repairs=run.repairs,
@@ -80,7 +76,7 @@ def record_of(task: BenchTask, run: Generation, out_dir: Path | None,
         completion_tokens=run.usage.completion_tokens, seconds=round(run.seconds, 3),
         message=run.message, out_dir=str(out_dir) if out_dir else None,
         spec=run.spec.model_dump(mode="json") if run.spec else None,
-        conformity=conformity, criticality=crit.as_dict() if crit else None,
+        conformity=run.conformity, criticality=crit.as_dict() if crit else None,
         attempts=[AttemptRecord(
             index=a.index, kind=a.kind, ok=a.ok,
             stage=a.diagnostic.stage.value if a.diagnostic else None,
@@ -116,31 +112,29 @@ class TaskRunner:
                                            **overrides)
         return self._judge_llm
 
-    def run(self, task: BenchTask) -> RunRecord:
+    def generator_for(self, task: BenchTask) -> Generator:
+        """The runner's one Generator, set to the task's mode, temperature and seed."""
         options = task_options(self.base, task)
         if self._generator is None:
             self._generator = Generator(options)
-        generator = self._generator
-        generator.reconfigure(options)
+        self._generator.reconfigure(options)
+        return self._generator
+
+    def run(self, task: BenchTask) -> RunRecord:
+        generator = self.generator_for(task)
         out_dir = task_dir(self.out_root, task)
         generation = generator.generate(task.description, out_dir)
-        features: frozenset[str] = frozenset()
-        if generation.final_check and generation.final_check.map:
-            entry = generator.registry.entries.get(generation.final_check.map.name)
-            features = entry.features if entry else frozenset()
-        record = record_of(task, generation, out_dir, features)
+        record = record_of(task, generation, out_dir)
         if self.judging and generation.ok:
-            record.judge = judge_run(self.judge_llm(generator), generator, task, out_dir)
+            record.judge = judge_run(self.judge_llm(generator), task, out_dir,
+                                     generator.options.seed)
         return record
 
     def judge(self, record: RunRecord) -> dict[str, Any]:
         """Judge a run finished earlier (a benchmark first run without --judge)."""
-        options = task_options(self.base, record.task)
-        if self._generator is None:
-            self._generator = Generator(options)
-        self._generator.reconfigure(options)
-        return judge_run(self.judge_llm(self._generator), self._generator, record.task,
-                         Path(record.out_dir or "."))
+        generator = self.generator_for(record.task)
+        return judge_run(self.judge_llm(generator), record.task, Path(record.out_dir or "."),
+                         generator.options.seed)
 
     def close(self) -> None:
         if self._generator is not None:
@@ -151,7 +145,7 @@ class TaskRunner:
             self._judge_llm = None
 
 
-def judge_run(judge: UsageLedger, generator: Generator, task: BenchTask, out_dir: Path
+def judge_run(judge: UsageLedger, task: BenchTask, out_dir: Path, seed: int | None
               ) -> dict[str, Any]:
     """SCS of the executed script, or why it could not be judged."""
     from arise.evaluate.judge import judge_script
@@ -163,7 +157,7 @@ def judge_run(judge: UsageLedger, generator: Generator, task: BenchTask, out_dir
         return {"scs": None, "error": f"no script to judge: {error}"}
     try:
         judgement = judge_script(task.description, script, judge,
-                                 temperature=0.0, seed=generator.options.seed)
+                                 temperature=0.0, seed=seed)
     except (LLMError, ValueError) as error:
         return {"scs": None, "error": str(error)}
     return judgement.as_dict()
@@ -288,7 +282,7 @@ def judge_missing(config: BenchConfig, store: BenchStore, out_root: Path,
     try:
         for record in todo:
             record.judge = runner.judge(record)
-            store.update_judge(record.task, record.judge)
+            store.save(record)
             if on_judged:
                 on_judged(record)
     finally:
@@ -300,36 +294,30 @@ def recheck(store: BenchStore, on_record: OnRecord | None = None) -> int:
     """Validate each executed run's saved script again (same seed, so the same scene) and
     refresh its conformity and criticality: old runs get the current checks without
     generating anything again."""
-    from arise.generate.pipeline import SAMPLE_ITERATIONS
     from arise.generate.spec import ScenarioSpec
-    from arise.maps.registry import MapRegistry
-    from arise.validate import CheckOptions, WorkerPool, check
+    from arise.validate import check
 
     meta_options = store.meta().get("options")
     base = GenerateOptions.model_validate(meta_options if isinstance(meta_options, dict)
                                           else {})
-    registry = MapRegistry(base.map_dir)
+    runner = TaskRunner(base, Path("."))
     count = 0
-    with WorkerPool(size=1) as pool:
+    try:
         for record in store.runs():
             script = Path(record.out_dir or "") / "scenario.scenic"
             if not record.ok or record.spec is None or not script.is_file():
                 continue
-            options = task_options(base, record.task)
-            result = check(script, CheckOptions(
-                simulator=options.simulator, map_dir=options.map_dir, steps=options.steps,
-                spawn_attempts=options.spawn_attempts, seed=options.seed,
-                sample_iterations=SAMPLE_ITERATIONS, timeout=options.check_timeout),
-                pool=pool, registry=registry)
-            entry = registry.entries.get(result.map.name) if result.map else None
-            facts = result.simulation if result.ok else None
-            record.conformity = check_conformity(
-                ScenarioSpec.model_validate(record.spec), facts,
-                entry.features if entry else frozenset()).as_dict()
-            crit = criticality(facts)
+            generator = runner.generator_for(record.task)
+            result = check(script, generator.check_options(), pool=generator.pool,
+                           registry=generator.registry)
+            record.conformity = generator.conformity_of(
+                ScenarioSpec.model_validate(record.spec), result).as_dict()
+            crit = criticality(result.simulation if result.ok else None)
             record.criticality = crit.as_dict() if crit else None
             store.save(record)
             count += 1
             if on_record:
                 on_record(record)
+    finally:
+        runner.close()
     return count

@@ -13,7 +13,7 @@ from datetime import UTC, datetime
 from pathlib import Path
 from typing import Any
 
-from arise.evaluate.records import AttemptRecord, BenchTask, RunRecord
+from arise.evaluate.records import AttemptRecord, RunRecord
 
 SCHEMA = """
 CREATE TABLE IF NOT EXISTS meta (key TEXT PRIMARY KEY, value TEXT NOT NULL);
@@ -104,14 +104,6 @@ class BenchStore:
                 [(run_id, a.index, a.kind, int(a.ok), a.stage, a.error_type, a.message,
                   a.section, round(a.check_seconds, 3), a.llm_calls, a.tokens)
                  for a in record.attempts])
-
-    def update_judge(self, task: BenchTask, judge: dict[str, Any]) -> None:
-        """Add an SCS judgement to a finished run (judging can come later than generating)."""
-        for record in self.runs():
-            if record.task.key == task.key:
-                record.judge = judge
-                self.save(record)
-                return
 
     def runs(self) -> list[RunRecord]:
         rows = self._db.execute("SELECT record FROM runs ORDER BY id")

@@ -13,6 +13,13 @@ from rich.text import Text
 
 from arise.generate.options import GenerateOptions, Mode
 from arise.generate.pipeline import Generation, Generator, slug
+from arise.llm.cli_options import (
+    ModelOption,
+    NoCacheOption,
+    ProviderOption,
+    RecordOption,
+    ReplayOption,
+)
 
 console = Console(soft_wrap=True)
 errors = Console(stderr=True, soft_wrap=True)
@@ -64,9 +71,8 @@ def generate_command(
         help="Descriptions, one per line (.txt) or JSON lines with 'description' (.jsonl).")]
     = None,
     count: Annotated[int, typer.Option(help="Runs per description.")] = 1,
-    provider: Annotated[str | None, typer.Option(help="LLM provider (see `arise llm info`).")]
-    = None,
-    model: Annotated[str | None, typer.Option(help="Model name for the provider.")] = None,
+    provider: ProviderOption = None,
+    model: ModelOption = None,
     temperature: Annotated[float, typer.Option(help="Sampling temperature.")] = 0.0,
     topk: Annotated[int, typer.Option(help="Snippets retrieved per component.")] = 2,
     max_repairs: Annotated[int, typer.Option(help="Repair budget per run.")] = 10,
@@ -75,12 +81,9 @@ def generate_command(
     mode: Annotated[Mode, typer.Option(help="arise, single-pass or chatscene.")] = Mode.ARISE,
     map_dir: Annotated[str | None, typer.Option(help="Extra maps (e.g. CARLA towns).")] = None,
     seed: Annotated[int, typer.Option(help="Seed for sampling and the model.")] = 0,
-    no_cache: Annotated[bool, typer.Option("--no-cache", help="Do not use the LLM cache.")]
-    = False,
-    record: Annotated[str | None, typer.Option(help="Record LLM calls to this cassette.")]
-    = None,
-    replay: Annotated[str | None, typer.Option(help="Answer LLM calls from this cassette.")]
-    = None,
+    no_cache: NoCacheOption = False,
+    record: RecordOption = None,
+    replay: ReplayOption = None,
     semantic_gate: Annotated[bool, typer.Option(
         "--semantic-gate", help="Also require the deterministic conformity check to agree "
         "with the description (adversary, start side, maneuver, road, weather).")] = False,
@@ -109,8 +112,8 @@ def generate_command(
         for ident, text in descriptions:
             for index in range(count):
                 folder = out if single else out / (ident if count == 1 else f"{ident}/run-{index}")
-                generator.options = options.model_copy(update={"run_index": index,
-                                                               "seed": seed + index})
+                generator.reconfigure(options.model_copy(update={"run_index": index,
+                                                                 "seed": seed + index}))
                 run = _run_with_progress(generator, text, folder, quiet=as_json)
                 runs.append(run)
                 if not as_json:

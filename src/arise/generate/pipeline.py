@@ -9,6 +9,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from arise.evaluate.conformity import GATED_CHECKS, Conformity, check_conformity
 from arise.generate.assemble import Draft, assemble, declared_params, tune_params
 from arise.generate.extract import check_description, extract_spec
 from arise.generate.hints import apply_hints, keep_stated_requirements
@@ -56,6 +57,8 @@ class Generation:
     seconds: float = 0.0
     out_dir: Path | None = None
     final_check: CheckResult | None = None
+    # The deterministic conformity check of the script that ran (set when the run ends).
+    conformity: dict[str, Any] | None = None
 
     @property
     def ok(self) -> bool:
@@ -92,16 +95,8 @@ class Generation:
             "seconds": round(self.seconds, 2),
             "simulation": (self.final_check.simulation.model_dump(mode="json", exclude={"agents"})
                            if self.final_check and self.final_check.simulation else None),
-            "conformity": self.conformity(),
+            "conformity": self.conformity,
         }
-
-    def conformity(self) -> dict[str, Any] | None:
-        """The deterministic conformity check of the script that ran (None if none ran)."""
-        if not self.ok or self.spec is None or self.final_check is None:
-            return None
-        from arise.evaluate.conformity import check_conformity
-
-        return check_conformity(self.spec, self.final_check.simulation).as_dict()
 
     def summary(self) -> str:
         if self.status == "executed":
@@ -208,30 +203,37 @@ class Generator:
             run.seconds = time.perf_counter() - started
             if self._provider is not None:
                 run.usage = self._provider.total - usage_before
+            if run.ok and run.spec is not None and run.final_check is not None:
+                run.conformity = self.conformity_of(run.spec, run.final_check).as_dict()
             self._save(run, final=True)
         emit({"event": "done", "status": run.status, "summary": run.summary()})
         return run
 
-    def _validate(self, script: str, run: Generation) -> CheckResult:
+    def check_options(self, png: str | None = None) -> CheckOptions:
+        """How this generator validates a script (also used to re-check saved scripts)."""
         options = self.options
-        png = str(run.out_dir / "scene.png") if run.out_dir else None
-        check_options = CheckOptions(
+        return CheckOptions(
             simulator=options.simulator, map_dir=options.map_dir, steps=options.steps,
             spawn_attempts=options.spawn_attempts, seed=options.seed,
             sample_iterations=SAMPLE_ITERATIONS, timeout=options.check_timeout, png=png)
-        result = check_text(script, check_options, pool=self.pool, registry=self.registry)
-        if result.ok and options.semantic_gate and run.spec is not None:
+
+    def conformity_of(self, spec: ScenarioSpec, result: CheckResult) -> Conformity:
+        """The conformity check of a validation, with the features of the map it ran on."""
+        features = self.maps.get(result.map.name, frozenset()) if result.map else frozenset()
+        return check_conformity(spec, result.simulation, features)
+
+    def _validate(self, script: str, run: Generation) -> CheckResult:
+        png = str(run.out_dir / "scene.png") if run.out_dir else None
+        result = check_text(script, self.check_options(png), pool=self.pool,
+                            registry=self.registry)
+        if result.ok and self.options.semantic_gate and run.spec is not None:
             result = self._semantic_gate(result, run.spec)
         run.final_check = result
         return result
 
     def _semantic_gate(self, result: CheckResult, spec: ScenarioSpec) -> CheckResult:
         """A script that runs but contradicts the spec fails, naming the section to change."""
-        from arise.evaluate.conformity import GATED_CHECKS, check_conformity
-
-        entry = self.registry.entries.get(result.map.name) if result.map else None
-        conformity = check_conformity(spec, result.simulation,
-                                      entry.features if entry else frozenset())
+        conformity = self.conformity_of(spec, result)
         wrong = [c for c in conformity.checks if c.ok is False and c.name in GATED_CHECKS]
         if not wrong:
             return result

@@ -277,9 +277,13 @@ def _agent_traces(simulation: Any) -> list[AgentTrace]:
     return traces
 
 
+def _network(simulation: Any) -> Any:
+    """The road network of a driving scene, or None (a scene without a map)."""
+    return getattr(getattr(simulation.scene, "workspace", None), "network", None)
+
+
 def _steps_in_junctions(simulation: Any, points: list[TracePoint]) -> int:
-    network = getattr(getattr(simulation.scene, "workspace", None), "network", None)
-    region = getattr(network, "intersectionRegion", None)
+    region = getattr(_network(simulation), "intersectionRegion", None)
     if region is None:
         return 0
     try:
@@ -291,7 +295,7 @@ def _steps_in_junctions(simulation: Any, points: list[TracePoint]) -> int:
 def _lane_changes(simulation: Any, points: list[TracePoint]) -> int | None:
     """Changes into another lane of the same lane group, sampled every half second; a road
     that merely curves or continues into its successor is no lane change."""
-    network = getattr(getattr(simulation.scene, "workspace", None), "network", None)
+    network = _network(simulation)
     if network is None:
         return None
     changes, previous = 0, None
