@@ -1,0 +1,12 @@
+"""The root of every exception arise raises on purpose.
+
+A user mistake (a missing file, a bad option, an unreachable server) is an `AriseError`
+with a message fit to print on one line; the command line catches this root once. Any
+other exception is a bug in arise and gets a crash report instead of a traceback.
+"""
+
+from __future__ import annotations
+
+
+class AriseError(Exception):
+    """Something arise could not do, said in one line a user can act on."""
