@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import base64
 import os
 import tempfile
 from collections.abc import Callable
@@ -10,9 +11,10 @@ from typing import Any
 
 from arise.maps.registry import MapError, MapRegistry
 from arise.validate.carla_server import unreachable_reason
-from arise.validate.pool import WorkerDied, WorkerPool
+from arise.validate.map_cache import MapPreparationError, prepare_map
+from arise.validate.pool import SandboxRequired, WorkerDied, WorkerPool
 from arise.validate.script_info import read_script_info
-from arise.validate.types import CheckOptions, CheckResult, Diagnostic, Stage
+from arise.validate.types import CheckOptions, CheckResult, Diagnostic, Simulator, Stage
 
 
 def _failure(script: str, stage: Stage, error_type: str, message: str,
@@ -30,9 +32,10 @@ def check(
     on_stage: Callable[[str], None] | None = None,
     **overrides: Any,
 ) -> CheckResult:
-    """Gate, compile, sample and simulate one Scenic file in an isolated worker.
+    """Gate, compile, sample and simulate one Scenic file in a confined worker.
 
-    Never raises for a bad script: every failure is in `result.diagnostic`.
+    Never raises for a bad script: every failure is in `result.diagnostic`, and
+    `result.sandbox` says which confinement the script ran under.
     """
     options = (options or CheckOptions()).model_copy(update=overrides)
     path = Path(script)
@@ -50,31 +53,71 @@ def check(
     info = read_script_info(text)
     try:
         registry = registry or MapRegistry(options.map_dir)
-        choice = registry.resolve(info.requested_map, info.requested_map_file,
+        choice = registry.resolve(info.requested_map,
+                                  _trusted_map_file(info.requested_map_file, path),
                                   path.resolve().parent)
-    except MapError as error:
+        prepare_map(Path(choice.path))
+    except (MapError, MapPreparationError) as error:
         return _failure(name, Stage.COMPILE, "MapError", str(error))
-    if options.simulator == "carla":
+    if options.simulator == Simulator.CARLA:
         reason = unreachable_reason(options.carla_host, options.carla_port,
                                     min(options.carla_timeout, 5.0))
         if reason:
             return _failure(name, Stage.SIMULATE, "CarlaUnreachable", reason)
-    request = {"script": str(path.resolve()), "options": options.model_dump(mode="json"),
+    request = {"text": text, "name": path.name, "options": options.model_dump(mode="json"),
                "map": choice.model_dump(mode="json")}
     own_pool = pool is None
     active = pool or WorkerPool(size=1, memory_mb=options.memory_mb)
     try:
         raw = active.run(request, options.timeout, on_stage)
     except WorkerDied as death:
-        result = CheckResult(ok=False, script=name, diagnostic=death.diagnostic, map=choice,
-                             model=info.model)
+        return CheckResult(ok=False, script=name, diagnostic=death.diagnostic, map=choice,
+                           model=info.model, sandbox=death.sandbox)
+    except SandboxRequired as refusal:
+        result = _failure(name, Stage.GATE, "SandboxUnavailable", str(refusal),
+                          "run on Linux >= 6.7 with Landlock enabled and libseccomp installed, "
+                          "or in a container or VM (see docs/security.md)")
+        result.sandbox = refusal.sandbox
         return result
     finally:
         if own_pool:
             active.close()
+    png_data = raw.pop("png_data", None)
     result = CheckResult.model_validate(raw)
     result.script = name
+    result.png = _write_png(options.png, png_data) if result.png else None
     return result
+
+
+def _trusted_map_file(requested: str | None, script: Path) -> str | None:
+    """A map file a script names is read only when it is a plain .xodr file in the
+    script's own folder tree; anything else (absolute paths, `..`, symlinks) is looked up
+    by name among the known maps instead, so a script cannot make us read other files."""
+    if not requested or not requested.endswith(".xodr"):
+        return None
+    relative = Path(requested)
+    if relative.is_absolute() or ".." in relative.parts:
+        return None
+    folder = script.resolve().parent
+    candidate = folder / relative
+    if candidate.is_symlink() or not candidate.is_file():
+        return None
+    if not candidate.resolve().is_relative_to(folder):
+        return None
+    return str(candidate)
+
+
+def _write_png(target: str | None, data: str | None) -> str | None:
+    """Write the picture the worker drew into the place the caller asked for, whole."""
+    if not target or not data:
+        return None
+    destination = Path(target)
+    destination.parent.mkdir(parents=True, exist_ok=True)
+    handle, temporary = tempfile.mkstemp(suffix=".png", dir=destination.parent)
+    with os.fdopen(handle, "wb") as out:
+        out.write(base64.b64decode(data))
+    os.replace(temporary, destination)
+    return str(destination)
 
 
 def check_text(text: str, options: CheckOptions | None = None, **kwargs: Any) -> CheckResult:

@@ -1,8 +1,11 @@
-"""Warm worker processes that run checks in isolation.
+"""Warm, confined worker processes that run checks in isolation.
 
-Each worker is its own session (process group) with an address-space limit; a check
-that outlives its wall-clock limit gets the whole group killed, and the worker that ran
-it is replaced. Workers are recycled after a number of checks to keep memory flat.
+Each worker is its own session (process group) in a private scratch folder, with a
+scrubbed environment (no API keys), and confines itself at the OS level before it reads a
+script (`arise.validate.sandbox`); its first message says which confinement is active,
+and the pool stamps that report on every result. A check that outlives its wall-clock
+limit, fills its scratch folder or floods the pipe gets the whole group killed, and the
+worker is replaced. Workers are recycled after a number of checks to keep memory flat.
 """
 
 from __future__ import annotations
@@ -12,54 +15,105 @@ import json
 import os
 import queue
 import select
+import shutil
 import signal
 import subprocess
 import sys
+import tempfile
 import threading
 import time
 from collections.abc import Callable
+from pathlib import Path
 from typing import Any
 
-from arise.validate.types import Diagnostic, Stage
+from arise.errors import AriseError
+from arise.paths import cache_dir
+from arise.validate.types import Diagnostic, SandboxReport, Stage
 
 READY_TIMEOUT = 120.0  # seconds for a cold worker to import Scenic on a busy machine
 KILL_GRACE = 3.0  # seconds after the time limit before the process group is killed
+SCRATCH_QUOTA_BYTES = 256 * 1024 * 1024  # a script that writes more is stopped
+MESSAGE_LIMIT_BYTES = 64 * 1024 * 1024  # one protocol line; a longer one is a flood
+# Variables a worker inherits; everything else (API keys above all) stays behind.
+_PASSED_ENV = ("PATH", "LANG", "LC_ALL", "LC_CTYPE", "TZ", "PYTHONPATH", "PYTHONHASHSEED",
+               "VIRTUAL_ENV", "ARISE_CACHE_DIR", "ARISE_MAP_DIR", "ARISE_WORKER_STDERR")
 
 StageCallback = Callable[[str], None]
 
 
-class WorkerDied(Exception):
+class WorkerDied(AriseError):
+    """The worker was killed or died; the diagnostic says why, in the script's terms."""
+
     def __init__(self, diagnostic: Diagnostic):
         super().__init__(diagnostic.message)
         self.diagnostic = diagnostic
+        self.sandbox: SandboxReport | None = None
+
+
+class WorkerStartError(AriseError):
+    """A worker could not start, or could not be confined as required."""
+
+
+def _worker_env(scratch: Path, memory_mb: int, connect_ports: tuple[int, ...],
+                confine: bool) -> dict[str, str]:
+    env = {key: os.environ[key] for key in _PASSED_ENV if key in os.environ}
+    env.update(HOME=str(scratch), TMPDIR=str(scratch), ARISE_WORKER_SCRATCH=str(scratch),
+               ARISE_CACHE_DIR=str(cache_dir()),
+               ARISE_WORKER_MEMORY_MB=str(memory_mb),
+               ARISE_WORKER_CONNECT_PORTS=",".join(str(p) for p in connect_ports),
+               ARISE_WORKER_CONFINE="1" if confine else "0",
+               MPLCONFIGDIR=str(cache_dir() / "matplotlib"), MPLBACKEND="Agg",
+               PYGAME_HIDE_SUPPORT_PROMPT="hide", SDL_VIDEODRIVER="dummy",
+               OMP_NUM_THREADS="1", OPENBLAS_NUM_THREADS="1", PYTHONDONTWRITEBYTECODE="1")
+    return env
+
+
+def _folder_bytes(folder: Path) -> int:
+    total = 0
+    for root, _, files in os.walk(folder):
+        for name in files:
+            with contextlib.suppress(OSError):
+                total += os.lstat(os.path.join(root, name)).st_size
+    return total
 
 
 class Worker:
-    """One child process running `arise.validate.worker`."""
+    """One confined child process running `arise.validate.worker`."""
 
-    def __init__(self, memory_mb: int):
-        env = dict(os.environ, ARISE_WORKER_MEMORY_MB=str(memory_mb),
-                   PYGAME_HIDE_SUPPORT_PROMPT="hide", MPLBACKEND="Agg",
-                   SDL_VIDEODRIVER="dummy", OMP_NUM_THREADS="1", OPENBLAS_NUM_THREADS="1")
+    def __init__(self, memory_mb: int, connect_ports: tuple[int, ...] = (),
+                 confine: bool = True):
+        self.connect_ports = connect_ports
+        self.scratch = Path(tempfile.mkdtemp(prefix="arise-worker-"))
         self.process = subprocess.Popen(
             [sys.executable, "-m", "arise.validate.worker"],
             stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=subprocess.DEVNULL,
-            start_new_session=True, env=env,
+            start_new_session=True, cwd=self.scratch,
+            env=_worker_env(self.scratch, memory_mb, connect_ports, confine),
         )
         self.checks_done = 0
         self._buffer = b""
-        message = self._read_message(time.monotonic() + READY_TIMEOUT)
+        try:
+            message = self._read_message(time.monotonic() + READY_TIMEOUT)
+        except WorkerDied:
+            message = None
         if message is None or message.get("event") != "ready":
             self.kill()
-            raise RuntimeError("a validator worker did not start; run "
-                               "`python -m arise.validate.worker` to see why")
+            raise WorkerStartError("a validator worker did not start; run "
+                                   "`python -m arise.validate.worker` to see why")
+        # Said before any script ran, so a script cannot forge it.
+        self.sandbox = SandboxReport.model_validate(message.get("sandbox") or {
+            "missing": ["landlock-fs", "landlock-net", "landlock-scope", "seccomp", "rlimits"]})
 
     @property
     def alive(self) -> bool:
         return self.process.poll() is None
 
     def _read_message(self, deadline: float) -> dict[str, Any] | None:
-        """Next JSON line from the worker, or None at the deadline or on exit."""
+        """Next JSON line from the worker, or None at the deadline or on exit.
+
+        Raises WorkerDied when the worker breaks the protocol (a flood, or not JSON) or
+        writes more than its quota into the scratch folder.
+        """
         assert self.process.stdout is not None
         fd = self.process.stdout.fileno()
         while b"\n" not in self._buffer:
@@ -67,14 +121,35 @@ class Worker:
             if remaining <= 0:
                 return None
             ready, _, _ = select.select([fd], [], [], min(remaining, 0.5))
+            if _folder_bytes(self.scratch) > SCRATCH_QUOTA_BYTES:
+                raise WorkerDied(self._refused(
+                    "DiskQuotaExceeded", f"the script wrote more than "
+                    f"{SCRATCH_QUOTA_BYTES // 2**20} MB into its scratch folder"))
             if not ready:
                 continue
             chunk = os.read(fd, 65536)
             if not chunk:
                 return None
             self._buffer += chunk
+            if len(self._buffer) > MESSAGE_LIMIT_BYTES:
+                raise WorkerDied(self._refused(
+                    "ProtocolViolation", "the worker flooded its result channel"))
         line, self._buffer = self._buffer.split(b"\n", 1)
-        return json.loads(line)
+        try:
+            message = json.loads(line)
+        except ValueError:
+            raise WorkerDied(self._refused(
+                "ProtocolViolation", "the worker wrote something other than its "
+                "protocol on its result channel")) from None
+        if not isinstance(message, dict):
+            raise WorkerDied(self._refused("ProtocolViolation", "malformed worker message"))
+        return message
+
+    def _refused(self, error_type: str, message: str) -> Diagnostic:
+        self.kill()
+        return Diagnostic(stage=Stage.SIMULATE, error_type=error_type, message=message,
+                          hint="the script did something a scenario never needs; the "
+                               "worker was stopped and replaced.")
 
     def run(self, request: dict[str, Any], timeout: float,
             on_stage: StageCallback | None = None) -> dict[str, Any]:
@@ -95,7 +170,7 @@ class Worker:
                 stage = message["stage"]
                 if on_stage:
                     on_stage(stage)
-            elif message.get("event") == "result":
+            elif message.get("event") == "result" and isinstance(message.get("result"), dict):
                 self.checks_done += 1
                 return dict(message["result"])
 
@@ -127,37 +202,55 @@ class Worker:
             if stream is not None:
                 with contextlib.suppress(OSError):
                     stream.close()
+        shutil.rmtree(self.scratch, ignore_errors=True)
 
 
 class WorkerPool:
-    """A few warm workers shared by the checks of one run; thread-safe."""
+    """A few warm, confined workers shared by the checks of one run; thread-safe.
 
-    def __init__(self, size: int = 1, memory_mb: int = 1536, recycle_after: int = 50):
+    `confine=False` exists only to measure what confinement costs (benchmarks); every
+    result then says that no confinement was active, and `require_sandbox` refuses it.
+    """
+
+    def __init__(self, size: int = 1, memory_mb: int = 1536, recycle_after: int = 50, *,
+                 require_sandbox: bool = False, confine: bool = True):
         self.size = max(1, size)
         self.memory_mb = memory_mb
         self.recycle_after = recycle_after
+        self.require_sandbox = require_sandbox
+        self.confine = confine
         self._idle: queue.LifoQueue[Worker] = queue.LifoQueue()
         self._started = 0
         self._closed = False
         self._lock = threading.Lock()
 
-    def _take(self) -> Worker:
+    def _take(self, connect_ports: tuple[int, ...]) -> Worker:
+        """An idle worker confined for these ports, or a new one."""
         try:
-            return self._idle.get_nowait()
+            worker = self._idle.get_nowait()
         except queue.Empty:
-            pass
-        with self._lock:
-            may_start = self._started < self.size
-            if may_start:
-                self._started += 1
-        if may_start:
+            worker = None
+        if worker is None:
+            with self._lock:
+                may_start = self._started < self.size
+                if may_start:
+                    self._started += 1
+            if not may_start:
+                worker = self._idle.get()
+        else:
+            may_start = False
+        if worker is not None and worker.connect_ports != connect_ports:
+            worker.kill()  # its confinement allows other ports; replace it
+            worker, may_start = None, True
+        if worker is None and may_start:
             try:
-                return Worker(self.memory_mb)
+                return Worker(self.memory_mb, connect_ports, self.confine)
             except Exception:
                 with self._lock:
                     self._started -= 1
                 raise
-        return self._idle.get()
+        assert worker is not None
+        return worker
 
     def _give_back(self, worker: Worker, healthy: bool) -> None:
         if healthy and worker.alive and worker.checks_done < self.recycle_after \
@@ -170,17 +263,31 @@ class WorkerPool:
 
     def warm(self) -> None:
         """Start every worker now, so the first checks do not pay for start-up."""
-        workers = [self._take() for _ in range(self.size - self._idle.qsize())]
+        workers = [self._take(()) for _ in range(self.size - self._idle.qsize())]
         for worker in workers:
             self._idle.put(worker)
 
     def run(self, request: dict[str, Any], timeout: float,
             on_stage: StageCallback | None = None) -> dict[str, Any]:
-        worker = self._take()
+        """Run one check request; the result dict carries the worker's `sandbox` report.
+
+        Raises WorkerDied (with a diagnostic) when the worker had to be killed, and
+        SandboxRequired when confinement is required but incomplete.
+        """
+        options = request.get("options") or {}
+        ports: tuple[int, ...] = ()
+        if options.get("simulator") == "carla":
+            port = int(options.get("carla_port", 2000))
+            ports = (port, port + 1)  # CARLA's RPC port and its streaming port
+        worker = self._take(ports)
+        if (self.require_sandbox or options.get("require_sandbox")) and not worker.sandbox.full:
+            self._give_back(worker, healthy=True)
+            raise SandboxRequired(worker.sandbox)
         try:
             result = worker.run(request, timeout, on_stage)
-        except WorkerDied:
+        except WorkerDied as death:
             self._give_back(worker, healthy=False)
+            death.sandbox = worker.sandbox
             raise
         except BaseException:
             self._give_back(worker, healthy=False)
@@ -188,6 +295,7 @@ class WorkerPool:
         diagnostic = result.get("diagnostic") or {}
         fragile = diagnostic.get("error_type") in ("MemoryError", "CheckTimeout", "Timeout")
         self._give_back(worker, healthy=not fragile)
+        result["sandbox"] = worker.sandbox.model_dump(mode="json")
         return result
 
     def close(self) -> None:
@@ -203,3 +311,12 @@ class WorkerPool:
 
     def __exit__(self, *exc: object) -> None:
         self.close()
+
+
+class SandboxRequired(AriseError):
+    """Confinement was required (`--require-sandbox`) but a mechanism is missing."""
+
+    def __init__(self, sandbox: SandboxReport):
+        super().__init__("refusing to run the script: confinement is incomplete (missing: "
+                         + ", ".join(m.value for m in sandbox.missing) + ")")
+        self.sandbox = sandbox

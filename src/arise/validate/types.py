@@ -23,6 +23,49 @@ class Stage(StrEnum):
     SEMANTIC = "semantic"
 
 
+class Simulator(StrEnum):
+    """Where a script is simulated."""
+
+    OFFLINE = "offline"  # arise's CARLA-compatible world model on Scenic's Newtonian simulator
+    CARLA = "carla"  # a CARLA server, through Scenic's CarlaSimulator
+
+
+class Mechanism(StrEnum):
+    """One layer of OS-level confinement of the worker that runs a script."""
+
+    LANDLOCK_FS = "landlock-fs"  # files: read the interpreter and maps, write only scratch
+    LANDLOCK_NET = "landlock-net"  # TCP: no connect or bind (CARLA mode: its ports only)
+    LANDLOCK_SCOPE = "landlock-scope"  # signals and abstract sockets stay inside the worker
+    SECCOMP = "seccomp"  # no exec, no new processes, no sockets, no kernel-facing calls
+    RLIMITS = "rlimits"  # memory, file size, open files, processes, core dumps
+
+
+class SandboxReport(BaseModel):
+    """Which confinement a script ran under: every result carries one."""
+
+    active: list[Mechanism] = Field(default_factory=list)
+    missing: list[Mechanism] = Field(default_factory=list)
+    landlock_abi: int = 0
+    notes: list[str] = Field(default_factory=list)
+
+    @property
+    def full(self) -> bool:
+        return not self.missing
+
+    @property
+    def label(self) -> str:
+        """Short form for one line of output, e.g. `landlock+seccomp+rlimits`."""
+        kinds: list[str] = []
+        for mechanism in (m for m in Mechanism if m in self.active):
+            kind = mechanism.value.split("-")[0]
+            if kind not in kinds:
+                kinds.append(kind)
+        text = "+".join(kinds) or "none"
+        if self.missing:
+            text += " (MISSING: " + ", ".join(m.value for m in self.missing) + ")"
+        return text
+
+
 class Rejection(BaseModel):
     """One reason Scenic threw away samples, with how often and where."""
 
@@ -119,7 +162,7 @@ class SimulationFacts(BaseModel):
 class CheckOptions(BaseModel):
     """What to check and how hard; the defaults suit a laptop, offline."""
 
-    simulator: str = "offline"
+    simulator: Simulator = Simulator.OFFLINE
     map_dir: str | None = None
     steps: int = 300
     spawn_attempts: int = 15
@@ -131,6 +174,10 @@ class CheckOptions(BaseModel):
     carla_host: str = "127.0.0.1"
     carla_port: int = 2000
     carla_timeout: float = 5.0
+    # Refuse to run a script when any confinement mechanism is missing.
+    require_sandbox: bool = False
+    # Skip the static gate (tests use it to prove the OS-level confinement holds alone).
+    static_gate: bool = True
 
 
 class CheckResult(BaseModel):
@@ -148,6 +195,8 @@ class CheckResult(BaseModel):
     # that failed for some scenes: a script may pass yet be fragile.
     simulation_rejections: list[Rejection] = Field(default_factory=list)
     png: str | None = None
+    # The confinement the script ran under (None: it never reached a worker).
+    sandbox: SandboxReport | None = None
 
     def summary(self) -> str:
         if self.ok and self.simulation is not None:

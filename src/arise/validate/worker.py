@@ -1,19 +1,25 @@
 """The child process that runs checks: gate, parse, compile, sample, simulate.
 
-It is started by `arise.validate.pool` with an address-space limit, talks JSON lines on a
-private pipe (Scenic's own prints go to /dev/null), reports each stage as it enters it so
-the parent can name the stage of a timeout, and stays warm between checks.
+It is started by `arise.validate.pool` in a private scratch folder with a scrubbed
+environment, imports Scenic, then confines itself for good (`arise.validate.sandbox`:
+Landlock, seccomp, rlimits) before it reads any script, and says in its first message
+which confinement is active. Scripts arrive as text over a private pipe, are written into
+the scratch folder and run from there; Scenic's own prints go to /dev/null. It reports
+each stage as it enters it, so the parent can name the stage of a timeout, and stays warm
+between checks.
 """
 
 from __future__ import annotations
 
 import _thread
+import base64
+import errno
 import io
 import json
 import os
 import random
 import re
-import resource
+import shutil
 import sys
 import threading
 import time
@@ -37,6 +43,8 @@ from arise.validate.types import (
     CheckResult,
     Diagnostic,
     MapChoice,
+    Mechanism,
+    SandboxReport,
     SimulationFacts,
     Stage,
     TracePoint,
@@ -86,8 +94,9 @@ def _warm_up() -> None:
         entry = _NETWORK_CACHE.pop(key, None)
         if entry is None:
             size = os.path.getsize(resolved) if stamp is not None else 0
-            entry = (original(cls, path, useCache=useCache, writeCache=writeCache, **kwargs),
-                     size)
+            # A confined worker cannot write beside the map, and a .snet written by a
+            # process that ran a script must not be trusted: the parent prepares it.
+            entry = (original(cls, path, useCache=useCache, writeCache=False, **kwargs), size)
         _NETWORK_CACHE[key] = entry  # most recently used last
         while len(_NETWORK_CACHE) > 1 and sum(
                 size for _, size in _NETWORK_CACHE.values()) > NETWORK_CACHE_BYTES:
@@ -109,6 +118,14 @@ def _warm_up() -> None:
 
     dynamics.stuckBehaviorWarningTimeout = STUCK_BEHAVIOR_SECONDS
     _VOCABULARY.extend(_build_vocabulary())
+    # Load what later checks read, while files may still be written: matplotlib's font
+    # list (built and cached on first use) and the offline world model's Python parts.
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.font_manager  # noqa: F401
+
+    import arise.validate.worldmodel.simulator  # noqa: F401
 
 
 def _memoise_library_parsing() -> None:
@@ -192,7 +209,7 @@ class _Watchdog:
         self._timer.cancel()
 
 
-def _gate_and_parse(text: str, path: str) -> None:
+def _gate_and_parse(text: str, path: str, static_gate: bool = True) -> None:
     from scenic.core.errors import ScenicSyntaxError
     from scenic.syntax.compiler import compileScenicAST
     from scenic.syntax.parser import parse_string
@@ -204,7 +221,7 @@ def _gate_and_parse(text: str, path: str) -> None:
         if refusals:
             raise _Failed(_refusal(refusals, text)) from error
         raise
-    refusals = scan_tree(tree)
+    refusals = scan_tree(tree) if static_gate else []
     if refusals:
         raise _Failed(_refusal(refusals, text))
     compileScenicAST(tree, filename=path)
@@ -336,12 +353,38 @@ def _simulation_facts(simulation: Any) -> SimulationFacts:
     )
 
 
-def run_check(request: dict[str, Any], emit: Emit) -> CheckResult:
-    """One check, from file to facts. Errors come back as a Diagnostic, never raised."""
+def _fresh_scratch(scratch: Path, name: str, text: str) -> str:
+    """Empty the scratch folder and put the script in it; returns the path to run."""
+    for entry in scratch.iterdir():
+        if entry.is_dir() and not entry.is_symlink():
+            shutil.rmtree(entry, ignore_errors=True)
+        else:
+            entry.unlink(missing_ok=True)
+    folder = scratch / "script"
+    folder.mkdir()
+    path = folder / (Path(name).name or "scenario.scenic")
+    path.write_text(text, encoding="utf-8")
+    return str(path)
+
+
+def _sandbox_hint(error: BaseException) -> str | None:
+    """A refusal by the OS-level confinement, said as such."""
+    if isinstance(error, OSError) and error.errno in (errno.EPERM, errno.EACCES, errno.ENOSYS,
+                                                     errno.EFBIG):
+        return ("the sandbox refused this: scripts run confined and may not read the user's "
+                "files, write outside their scratch folder, open network connections or "
+                "start programs; remove the construct.")
+    return None
+
+
+def run_check(request: dict[str, Any], emit: Emit, scratch: Path) -> CheckResult:
+    """One check, from text to facts. Errors come back as a Diagnostic, never raised."""
     options = CheckOptions.model_validate(request["options"])
-    path = request["script"]
+    text = str(request["text"])
+    path = _fresh_scratch(scratch, str(request.get("name") or "scenario.scenic"), text)
+    if options.png:
+        options = options.model_copy(update={"png": str(scratch / "scene.png")})
     map_choice = MapChoice.model_validate(request["map"]) if request.get("map") else None
-    text = Path(path).read_text(encoding="utf-8")
     info = read_script_info(text)
     result = CheckResult(ok=False, script=path, map=map_choice, model=info.model)
     timings = result.timings
@@ -381,6 +424,7 @@ def run_check(request: dict[str, Any], emit: Emit) -> CheckResult:
     except Exception as error:  # noqa: BLE001  (any script failure becomes a Diagnostic)
         stage_of_error = Stage.PARSE if _is_syntax_error(error) else stage
         result.diagnostic = from_exception(error, stage_of_error, text, path, info, _VOCABULARY)
+        result.diagnostic.hint = _sandbox_hint(error) or result.diagnostic.hint
     result.ok = result.diagnostic is None and result.simulation is not None
     return result
 
@@ -403,7 +447,7 @@ def _run_stages(path: str, text: str, info: ScriptInfo, options: CheckOptions,
     result.warnings.extend(notes)
     if map_choice is not None and map_choice.substituted and map_choice.reason:
         result.warnings.append(map_choice.reason)
-    _gate_and_parse(text, path)
+    _gate_and_parse(text, path, options.static_gate)
     timings["gate+parse"] = round(time.perf_counter() - started, 3)
 
     started = enter(Stage.COMPILE)
@@ -496,6 +540,23 @@ def _useful_warnings(caught: list[warnings.WarningMessage]) -> list[str]:
 
 
 # --- process entry point -------------------------------------------------------------------
+def _confine(scratch: Path) -> SandboxReport:
+    from arise.validate.sandbox import confine, python_policy
+
+    memory_mb = int(os.environ.get("ARISE_WORKER_MEMORY_MB", "0"))
+    ports = tuple(int(p) for p in os.environ.get("ARISE_WORKER_CONNECT_PORTS", "").split(",")
+                  if p.strip())
+    policy = python_policy(scratch, memory_mb=memory_mb, connect_ports=ports)
+    if os.environ.get("ARISE_WORKER_CONFINE", "1") == "0":
+        import resource
+
+        if policy.memory_bytes:
+            resource.setrlimit(resource.RLIMIT_AS, (policy.memory_bytes, policy.memory_bytes))
+        return SandboxReport(missing=list(Mechanism),
+                             notes=["confinement turned off by the caller (benchmarks only)"])
+    return confine(policy)
+
+
 def main() -> None:
     protocol = os.fdopen(os.dup(1), "w", buffering=1, encoding="utf-8")
     sink = os.open(os.devnull, os.O_WRONLY)
@@ -507,21 +568,19 @@ def main() -> None:
         protocol.write(json.dumps(message) + "\n")
         protocol.flush()
 
+    scratch = Path(os.environ.get("ARISE_WORKER_SCRATCH") or os.getcwd())
     _warm_up()
-    limit_mb = int(os.environ.get("ARISE_WORKER_MEMORY_MB", "0"))
-    if limit_mb > 0:
-        import psutil
-
-        baseline = psutil.Process().memory_info().vms
-        ceiling = baseline + limit_mb * 1024 * 1024
-        resource.setrlimit(resource.RLIMIT_AS, (ceiling, ceiling))
-    emit({"event": "ready", "pid": os.getpid()})
+    sandbox = _confine(scratch)
+    emit({"event": "ready", "pid": os.getpid(), "sandbox": sandbox.model_dump(mode="json")})
     for line in sys.stdin:
         if not line.strip():
             continue
         request = json.loads(line)
-        result = run_check(request, emit)
-        emit({"event": "result", "result": result.model_dump(mode="json")})
+        result = run_check(request, emit, scratch)
+        payload = result.model_dump(mode="json")
+        if result.png:
+            payload["png_data"] = base64.b64encode(Path(result.png).read_bytes()).decode()
+        emit({"event": "result", "result": payload})
 
 
 if __name__ == "__main__":
