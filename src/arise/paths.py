@@ -13,3 +13,11 @@ def cache_dir() -> Path:
     folder = Path(os.environ.get("ARISE_CACHE_DIR") or platformdirs.user_cache_dir("arise"))
     folder.mkdir(parents=True, exist_ok=True)
     return folder
+
+
+def config_path() -> Path:
+    """The user's config file: $ARISE_CONFIG, or <user config dir>/arise/config.toml."""
+    override = os.environ.get("ARISE_CONFIG")
+    if override:
+        return Path(override).expanduser()
+    return Path(platformdirs.user_config_dir("arise")) / "config.toml"

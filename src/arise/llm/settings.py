@@ -14,9 +14,8 @@ from dataclasses import dataclass, field, fields, replace
 from pathlib import Path
 from typing import Any, Literal, get_args
 
-import platformdirs
-
 from arise.llm.types import Capabilities, LLMError, MissingCredentials, StructuredStyle
+from arise.paths import config_path
 
 Kind = Literal["openai", "anthropic", "local", "replay"]
 
@@ -177,13 +176,6 @@ class Settings:
                 f"unknown provider {wanted!r}; known: {known} (or add [providers.{wanted}] to the config file)"
             )
         return self.profiles[wanted]
-
-
-def config_path() -> Path:
-    override = os.environ.get("ARISE_CONFIG")
-    if override:
-        return Path(override).expanduser()
-    return Path(platformdirs.user_config_dir("arise")) / "config.toml"
 
 
 def _coerce(name: str, value: Any, where: str) -> Any:
