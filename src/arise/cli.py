@@ -6,6 +6,7 @@ import warnings
 
 import typer
 
+from arise.doctor import DOCTOR_HELP, doctor_command
 from arise.evaluate.cli import BENCH_HELP, REPORT_HELP, bench_command, report_command
 from arise.evaluate.judge_cli import JUDGE_HELP, judge_command
 from arise.generate.cli import GENERATE_HELP, generate_command
@@ -25,6 +26,7 @@ app.command("bench", help=BENCH_HELP)(bench_command)
 app.command("report", help=REPORT_HELP)(report_command)
 app.command("judge", help=JUDGE_HELP)(judge_command)
 app.command("blueprints")(blueprints_command)
+app.command("doctor", help=DOCTOR_HELP)(doctor_command)
 app.add_typer(maps_app, name="maps")
 app.add_typer(llm_app, name="llm")
 from arise.kb.cli import app as kb_app; app.add_typer(kb_app, name="kb")  # noqa: E402, E702, I001

@@ -13,6 +13,7 @@ from arise.maps.registry import MapError, MapRegistry
 from arise.validate.carla_server import unreachable_reason
 from arise.validate.map_cache import MapPreparationError, prepare_map
 from arise.validate.pool import SandboxRequired, WorkerDied, WorkerPool
+from arise.validate.sandbox import required_by_settings
 from arise.validate.script_info import read_script_info
 from arise.validate.types import CheckOptions, CheckResult, Diagnostic, Simulator, Stage
 
@@ -38,6 +39,8 @@ def check(
     `result.sandbox` says which confinement the script ran under.
     """
     options = (options or CheckOptions()).model_copy(update=overrides)
+    if not options.require_sandbox and required_by_settings():
+        options = options.model_copy(update={"require_sandbox": True})
     path = Path(script)
     name = str(path)
     if not path.is_file():

@@ -17,7 +17,7 @@ from rich.table import Table
 from arise.maps.registry import MapError, MapRegistry
 from arise.validate.api import check
 from arise.validate.pool import WorkerPool
-from arise.validate.types import CheckOptions, CheckResult
+from arise.validate.types import CheckOptions, CheckResult, SandboxReport, Simulator
 
 console = Console(soft_wrap=True)
 errors = Console(stderr=True, soft_wrap=True)
@@ -61,6 +61,7 @@ def _print_result(result: CheckResult) -> None:
         note = f" (substitute for {result.map.requested})" if result.map.substituted and \
             result.map.requested else ""
         console.print(f"  map: {result.map.name}{note}")
+    print_sandbox(result.sandbox)
     for rejection in result.simulation_rejections:
         console.print(f"  [yellow]note:[/yellow] {rejection.count} simulation(s) rejected "
                       f"before this one: {rejection.reason}")
@@ -99,9 +100,23 @@ def _print_result(result: CheckResult) -> None:
         console.print(f"  picture: {result.png}")
 
 
+def print_sandbox(sandbox: SandboxReport | None, indent: str = "  ") -> None:
+    """One line saying which confinement a script ran under; loud when incomplete."""
+    if sandbox is None:
+        console.print(f"{indent}sandbox: [yellow]none (the script never reached a worker)"
+                      "[/yellow]")
+    elif sandbox.full:
+        console.print(f"{indent}sandbox: {sandbox.label}")
+    else:
+        console.print(f"{indent}[bold red]sandbox: {sandbox.label}[/bold red]")
+        for note in sandbox.notes:
+            console.print(f"{indent}  [red]{note}[/red]")
+
+
 def check_command(
     scripts: Annotated[list[Path], typer.Argument(help="Scenic files to check.")],
-    simulator: Annotated[str, typer.Option(help="offline (default) or carla.")] = "offline",
+    simulator: Annotated[Simulator, typer.Option(
+        help="offline (arise's world model) or carla (a CARLA server).")] = Simulator.OFFLINE,
     map_dir: Annotated[str | None, typer.Option(
         help="Folder of extra .xodr maps, e.g. CARLA towns (env ARISE_MAP_DIR).")] = None,
     steps: Annotated[int, typer.Option(help="Simulation steps to run.")] = 300,
@@ -119,10 +134,12 @@ def check_command(
     carla_host: Annotated[str, typer.Option(help="CARLA server host.")] = "127.0.0.1",
     carla_port: Annotated[int, typer.Option(help="CARLA server port.")] = 2000,
     workers: Annotated[int, typer.Option(help="Parallel worker processes.")] = 1,
+    require_sandbox: Annotated[bool, typer.Option(
+        "--require-sandbox",
+        help="Refuse to run a script unless every confinement mechanism is active "
+             "(also ARISE_REQUIRE_SANDBOX=1 or `[sandbox] require = true` in the config).")]
+    = False,
 ) -> None:
-    if simulator not in ("offline", "carla"):
-        errors.print(f"[red]error:[/red] --simulator must be 'offline' or 'carla', not {simulator!r}")
-        raise typer.Exit(2)
     try:
         registry = MapRegistry(map_dir)
     except MapError as error:
@@ -131,7 +148,8 @@ def check_command(
     options = CheckOptions(simulator=simulator, map_dir=map_dir, steps=steps,
                            spawn_attempts=spawn_attempts, sample_iterations=sample_iterations,
                            seed=seed, timeout=timeout, memory_mb=memory_mb,
-                           carla_host=carla_host, carla_port=carla_port)
+                           carla_host=carla_host, carla_port=carla_port,
+                           require_sandbox=require_sandbox)
     many = len(scripts) > 1
     results: list[CheckResult] = []
     with WorkerPool(size=max(1, min(workers, len(scripts))), memory_mb=memory_mb) as pool:

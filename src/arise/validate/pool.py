@@ -267,6 +267,12 @@ class WorkerPool:
         for worker in workers:
             self._idle.put(worker)
 
+    def sandbox(self) -> SandboxReport:
+        """The confinement this pool's workers reach (starts one if none is warm)."""
+        worker = self._take(())
+        self._give_back(worker, healthy=True)
+        return worker.sandbox
+
     def run(self, request: dict[str, Any], timeout: float,
             on_stage: StageCallback | None = None) -> dict[str, Any]:
         """Run one check request; the result dict carries the worker's `sandbox` report.

@@ -356,6 +356,23 @@ def confine(policy: ConfinementPolicy) -> SandboxReport:
     return report
 
 
+def required_by_settings() -> bool:
+    """Whether the user asked, once for all runs, never to run a script without full
+    confinement: `ARISE_REQUIRE_SANDBOX=1` or `[sandbox] require = true` in the config."""
+    flag = os.environ.get("ARISE_REQUIRE_SANDBOX", "").strip().lower()
+    if flag:
+        return flag in ("1", "true", "yes", "on")
+    import tomllib
+
+    from arise.paths import config_path
+
+    try:
+        table = tomllib.loads(config_path().read_text(encoding="utf-8")).get("sandbox", {})
+    except (OSError, tomllib.TOMLDecodeError):
+        return False
+    return isinstance(table, dict) and table.get("require") is True
+
+
 def kernel_support() -> SandboxReport:
     """What this machine could apply, without applying anything (for `arise doctor`)."""
     report = SandboxReport()
