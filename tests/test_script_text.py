@@ -2,8 +2,9 @@
 
 from __future__ import annotations
 
+from arise.sections import find_sections, section_of_line
+from arise.validate.diagnostics import excerpt
 from arise.validate.script_info import read_script_info
-from arise.validate.sections import excerpt, find_sections, section_of_line
 
 SCRIPT = """# BEGIN HEADER
 Town = 'Town05'

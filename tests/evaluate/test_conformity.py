@@ -6,8 +6,8 @@ from pathlib import Path
 
 import pytest
 
-from arise.evaluate.conformity import check_conformity
 from arise.evaluate.criticality import criticality
+from arise.generate.conformity import check_conformity
 from arise.generate.options import GenerateOptions
 from arise.generate.pipeline import Generator
 from arise.generate.spec import ScenarioSpec

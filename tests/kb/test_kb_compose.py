@@ -12,7 +12,7 @@ from arise.kb.compose import (
     pick_map,
 )
 from arise.kb.loader import load_kb
-from arise.validate.sections import find_sections
+from arise.sections import find_sections
 
 KB = load_kb(strict=True)
 CORE = ["behavior.cross_and_stop", "geometry.straight_road", "spawn.roadside_right_near"]

@@ -13,7 +13,7 @@ import math
 from dataclasses import asdict, dataclass
 from typing import Any
 
-from arise.evaluate.conformity import find_adversary
+from arise.generate.conformity import find_adversary
 from arise.validate.types import SimulationFacts
 
 

@@ -24,6 +24,7 @@ from pydantic import BaseModel, ConfigDict, Field, field_validator
 from arise.llm.base import BaseProvider
 from arise.llm.types import LLMError, Message, StructuredOutputFailed, Usage
 from arise.prompts import load, load_jsonl
+from arise.sections import MarkerKind, begin_marker, parse_marker
 
 #: The criteria, in the order the model answers them and every table shows them.
 CRITERIA: tuple[str, ...] = ("adversary_type", "behavior", "geometry", "weather",
@@ -182,7 +183,6 @@ class Judgement:
 
 # ------------------------------------------------------------------------------ the prompt
 
-_BEGIN = re.compile(r"^#\s*BEGIN\s+(\w+)\s*$")
 _COMMENT = re.compile(r"^\s*#")
 _INLINE_COMMENT = re.compile(r"\s+#[^'\"]*$")
 _HEADER_NOISE = re.compile(r"^\s*(model\s|param\s+map\s*=)")
@@ -202,9 +202,9 @@ def compact_script(text: str) -> str:
         stripped = line.strip()
         if not stripped:
             continue
-        begin = _BEGIN.match(stripped)
-        if begin:
-            kept.append(f"# BEGIN {begin.group(1).upper()}")
+        marker = parse_marker(stripped)
+        if marker is not None and marker.kind is MarkerKind.BEGIN:
+            kept.append(begin_marker(marker.name))
             continue
         if _COMMENT.match(line) or _HEADER_NOISE.match(line):
             continue

@@ -11,8 +11,10 @@ from rich.console import Console
 from rich.live import Live
 from rich.text import Text
 
+from arise.generate.events import AttemptChecked, ProgressEvent, StageStarted
 from arise.generate.options import GenerateOptions, Mode
-from arise.generate.pipeline import Generation, Generator, slug
+from arise.generate.pipeline import Generator, slug
+from arise.generate.run import Generation, RunStatus
 from arise.llm.cli_options import (
     ModelOption,
     NoCacheOption,
@@ -20,6 +22,7 @@ from arise.llm.cli_options import (
     RecordOption,
     ReplayOption,
 )
+from arise.validate.types import Simulator
 
 console = Console(soft_wrap=True)
 errors = Console(stderr=True, soft_wrap=True)
@@ -74,10 +77,12 @@ def generate_command(
     provider: ProviderOption = None,
     model: ModelOption = None,
     temperature: Annotated[float, typer.Option(help="Sampling temperature.")] = 0.0,
-    topk: Annotated[int, typer.Option(help="Snippets retrieved per component.")] = 2,
+    topk: Annotated[int, typer.Option(
+        help="Candidates kept per component: the first is used, the others replace it when "
+             "repair swaps a section.", min=1)] = 10,
     max_repairs: Annotated[int, typer.Option(help="Repair budget per run.")] = 10,
     spawn_attempts: Annotated[int, typer.Option(help="Scenes tried per check.")] = 15,
-    simulator: Annotated[str, typer.Option(help="offline or carla.")] = "offline",
+    simulator: Annotated[Simulator, typer.Option(help="offline or carla.")] = Simulator.OFFLINE,
     mode: Annotated[Mode, typer.Option(help="arise, single-pass or chatscene.")] = Mode.ARISE,
     map_dir: Annotated[str | None, typer.Option(help="Extra maps (e.g. CARLA towns).")] = None,
     seed: Annotated[int, typer.Option(help="Seed for sampling and the model.")] = 0,
@@ -93,9 +98,6 @@ def generate_command(
     if not descriptions:
         errors.print("[red]error:[/red] give a description or --file")
         raise typer.Exit(2)
-    if simulator not in ("offline", "carla"):
-        errors.print("[red]error:[/red] --simulator must be offline or carla")
-        raise typer.Exit(2)
     options = GenerateOptions(mode=mode, provider=provider, model=model, temperature=temperature,
                               topk=topk, max_repairs=max_repairs, spawn_attempts=spawn_attempts,
                               simulator=simulator, map_dir=map_dir, seed=seed,
@@ -103,12 +105,7 @@ def generate_command(
                               semantic_gate=semantic_gate)
     runs: list[Generation] = []
     single = len(descriptions) == 1 and count == 1
-    try:
-        generator = Generator(options)
-    except Exception as error:  # noqa: BLE001  (bad KB/map folders are user errors)
-        errors.print(f"[red]error:[/red] {error}")
-        raise typer.Exit(2) from None
-    with generator:
+    with Generator(options) as generator:  # bad KB or map folders raise AriseError
         for ident, text in descriptions:
             for index in range(count):
                 folder = out if single else out / (ident if count == 1 else f"{ident}/run-{index}")
@@ -127,7 +124,7 @@ def generate_command(
     elif not single:
         done = sum(run.ok for run in runs)
         console.print(f"\n{done} of {len(runs)} runs produced an executable script")
-    if any(run.status in ("refused",) for run in runs) and single:
+    if single and runs[0].status is RunStatus.REFUSED:
         errors.print(f"[red]error:[/red] {runs[0].message}")
         raise typer.Exit(2)
     raise typer.Exit(0 if all(run.ok for run in runs) else 1)
@@ -147,13 +144,14 @@ def _run_with_progress(generator: Generator, text: str, folder: Path, quiet: boo
         return line
 
     with Live(render(), console=console, transient=True, refresh_per_second=4) as live:
-        def update(event: dict[str, Any]) -> None:
-            if event.get("event") == "stage":
-                state["stage"] = event["stage"]
-                state["attempt"] = event.get("attempt", state["attempt"])
-            elif event.get("event") == "attempt":
-                state["attempt"] = event["index"]
-                state["error"] = event.get("error") or ""
+        def update(event: ProgressEvent) -> None:
+            if isinstance(event, StageStarted):
+                state["stage"] = event.stage.value
+                if event.attempt is not None:
+                    state["attempt"] = event.attempt
+            elif isinstance(event, AttemptChecked):
+                state["attempt"] = event.index
+                state["error"] = event.error or ""
             live.update(render())
 
         return generator.generate(text, folder, update)

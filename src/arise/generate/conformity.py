@@ -4,6 +4,10 @@ No model is asked. Facts come from the simulation the validator ran (which agent
 adversary, its class, where it started and which way it went, the ego's maneuver, the
 junction steps, the weather parameter, the other objects) and are compared with the spec.
 A fact that cannot be read (no trace, a weather dict) is "unknown" and does not count.
+
+It lives in the generator because the optional semantic gate (`semantic_gate`) makes a
+script that runs but contradicts the spec fail and be repaired; the evaluation reads the
+same check.
 """
 
 from __future__ import annotations
@@ -13,7 +17,14 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from arise.generate.spec import EgoManeuver, RelativePosition, RoadType, ScenarioSpec
-from arise.validate.types import AgentTrace, SimulationFacts, TracePoint
+from arise.validate.types import (
+    AgentTrace,
+    CheckResult,
+    Diagnostic,
+    SimulationFacts,
+    Stage,
+    TracePoint,
+)
 
 LANE_HALF = 1.8  # |lateral offset| below this is "in the ego's lane"
 NEXT_LANE = 5.6  # up to this is the adjacent lane
@@ -237,3 +248,17 @@ def _road_check(road: RoadType, ego: AgentTrace, adversary: AgentTrace | None,
                                f"{observed}, {'highway' if on_highway else 'no highway'} map",
                                on_highway and ego.intersection_steps == 0)
     return ConformityCheck("road_type", road.value, observed, ego.intersection_steps == 0)
+
+
+def semantic_gate(result: CheckResult, conformity: Conformity) -> CheckResult:
+    """A script that runs but contradicts the spec fails, naming the section to change."""
+    wrong = [c for c in conformity.checks if c.ok is False and c.name in GATED_CHECKS]
+    if not wrong:
+        return result
+    diagnostic = Diagnostic(
+        stage=Stage.SEMANTIC, error_type="ConformityMismatch",
+        message="; ".join(f"{c.name}: expected {c.expected}, observed {c.observed}"
+                          for c in wrong),
+        section=GATED_CHECKS[wrong[0].name],
+        hint="the script runs but does not do what the description says")
+    return result.model_copy(update={"ok": False, "diagnostic": diagnostic})

@@ -6,6 +6,8 @@ from enum import StrEnum
 
 from pydantic import BaseModel, Field
 
+from arise.validate.types import Simulator
+
 
 class Mode(StrEnum):
     ARISE = "arise"  # extraction, retrieval, tuned assembly, test-and-repair loop
@@ -18,10 +20,11 @@ class GenerateOptions(BaseModel):
     provider: str | None = None
     model: str | None = None
     temperature: float = 0.0
-    topk: int = Field(default=2, ge=1)
+    # Candidates kept per component: the first is used, the rest are fall-backs for swaps.
+    topk: int = Field(default=10, ge=1)
     max_repairs: int = Field(default=10, ge=0)
     spawn_attempts: int = Field(default=15, ge=1)
-    simulator: str = "offline"
+    simulator: Simulator = Simulator.OFFLINE
     steps: int = 200
     seed: int | None = 0
     run_index: int = 0

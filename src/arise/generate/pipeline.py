@@ -5,25 +5,21 @@ from __future__ import annotations
 import re
 import time
 from collections.abc import Callable
-from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from arise.evaluate.conformity import GATED_CHECKS, Conformity, check_conformity
-from arise.generate.assemble import Draft, assemble, declared_params, tune_params
+from arise.errors import AriseError
+from arise.generate.assemble import assemble, declared_params, tune_params
+from arise.generate.conformity import Conformity, check_conformity, semantic_gate
+from arise.generate.events import Progress, RunFinished, RunStage, StageStarted, ignore
 from arise.generate.extract import check_description, extract_spec
 from arise.generate.hints import apply_hints, keep_stated_requirements
 from arise.generate.options import GenerateOptions, Mode
 from arise.generate.outputs import write_attempt, write_report, write_script
-from arise.generate.repair import (
-    Attempt,
-    RepairContext,
-    note_llm_failure,
-    repair_once,
-    run_attempt,
-)
+from arise.generate.repair import RepairContext, Validate, repair_loop
 from arise.generate.retrieve import Retrieval, retrieve
 from arise.generate.rules import RuleContext
+from arise.generate.run import Attempt, AttemptKind, Generation, Outcome, RunStatus
 from arise.generate.spec import ScenarioSpec
 from arise.kb.compose import ComposeError
 from arise.kb.loader import KnowledgeBase
@@ -33,77 +29,18 @@ from arise.llm.accounting import UsageLedger
 from arise.llm.types import LLMError, Usage
 from arise.validate import CheckOptions, CheckResult, Diagnostic, Stage, WorkerPool, check_text
 
-Progress = Callable[[dict[str, Any]], None]
+__all__ = ["Generation", "Generator", "ReconfigureError", "generate", "slug"]
+
 # Rejection-sampling budget per check: enough for entries that run, and a failing
 # requirement is named within seconds instead of tens of seconds.
 SAMPLE_ITERATIONS = 250
+#: Options a Generator is built around; `reconfigure` refuses to change them.
+FIXED_OPTIONS = ("provider", "model", "threads", "cache", "record", "kb_dirs", "retrieval",
+                 "map_dir")
 
 
-@dataclass
-class Generation:
-    """Everything one generation did; `report()` is what report.json holds."""
-
-    description: str
-    options: GenerateOptions
-    status: str = "running"  # executed | failed | refused | provider_error
-    message: str | None = None
-    spec: ScenarioSpec | None = None
-    hint_notes: list[str] = field(default_factory=list)
-    contradictions: list[str] = field(default_factory=list)
-    retrieval: Retrieval | None = None
-    draft: Draft | None = None
-    attempts: list[Attempt] = field(default_factory=list)
-    usage: Usage = field(default_factory=Usage)
-    seconds: float = 0.0
-    out_dir: Path | None = None
-    final_check: CheckResult | None = None
-    # The deterministic conformity check of the script that ran (set when the run ends).
-    conformity: dict[str, Any] | None = None
-
-    @property
-    def ok(self) -> bool:
-        return self.status == "executed"
-
-    @property
-    def first_pass_ok(self) -> bool:
-        return bool(self.attempts) and self.attempts[0].ok
-
-    @property
-    def repairs(self) -> int:
-        return max(0, len(self.attempts) - 1)
-
-    def report(self) -> dict[str, Any]:
-        retrieval = self.retrieval
-        return {
-            "description": self.description,
-            "status": self.status,
-            "message": self.message,
-            "mode": self.options.mode.value,
-            "options": self.options.model_dump(mode="json"),
-            "spec": self.spec.model_dump(mode="json") if self.spec else None,
-            "spec_corrections": self.hint_notes,
-            "contradictions": self.contradictions,
-            "retrieved": retrieval.ids() if retrieval else {},
-            "chosen": [e.id for e in self.draft.entries] if self.draft else [],
-            "retrieval_notes": retrieval.notes if retrieval else [],
-            "map": self.draft.map_name if self.draft else None,
-            "params": self.draft.params if self.draft else {},
-            "first_pass_ok": self.first_pass_ok,
-            "repairs": self.repairs,
-            "attempts": [a.as_dict() for a in self.attempts],
-            "llm": self.usage.as_dict(),
-            "seconds": round(self.seconds, 2),
-            "simulation": (self.final_check.simulation.model_dump(mode="json", exclude={"agents"})
-                           if self.final_check and self.final_check.simulation else None),
-            "conformity": self.conformity,
-        }
-
-    def summary(self) -> str:
-        if self.status == "executed":
-            how = "first try" if self.first_pass_ok else f"after {self.repairs} repair(s)"
-            return (f"executed {how} in {self.seconds:.0f} s, {self.usage.calls} LLM call(s), "
-                    f"{self.usage.total_tokens} tokens")
-        return f"{self.status}: {self.message or ''}".strip()
+class ReconfigureError(AriseError):
+    """An option a Generator was built around cannot change on it: build another."""
 
 
 def slug(text: str) -> str:
@@ -127,32 +64,66 @@ def chatscene_retrieval(spec: ScenarioSpec, kb: KnowledgeBase, retriever: Retrie
     return result
 
 
+Checker = Callable[[str, CheckOptions], CheckResult]
+
+
 class Generator:
-    """Holds what is expensive to build once: the KB, the retriever, the model, the pool."""
+    """Holds what is expensive to build once: the KB, the retriever, the model, the pool.
+
+    `checker` replaces the validator (tests give a fake with a queue of results); by
+    default a script is checked by `check_text` in this generator's worker pool.
+    """
 
     def __init__(self, options: GenerateOptions, *, pool: WorkerPool | None = None,
-                 provider: UsageLedger | None = None):
-        from arise.kb.loader import load_kb
-        from arise.kb.retrieval import make_retriever
-        from arise.maps.registry import MapRegistry
-
+                 provider: UsageLedger | None = None, checker: Checker | None = None):
         self.options = options
-        self.kb = load_kb(options.kb_dirs)
-        self.retriever = make_retriever(self.kb, options.retrieval)
-        self.registry = MapRegistry(options.map_dir)
-        self.maps = {name: entry.features for name, entry in self.registry.entries.items()}
+        self._load_kb(options)
+        self._load_maps(options)
         self._own_pool = pool is None
         self.pool = pool or WorkerPool(size=1)
         self._own_provider = provider is None
         self._provider = provider
+        self._checker = checker
+
+    def _load_kb(self, options: GenerateOptions) -> None:
+        from arise.kb.loader import load_kb
+        from arise.kb.retrieval import make_retriever
+
+        self.kb = load_kb(options.kb_dirs)
+        self.retriever = make_retriever(self.kb, options.retrieval)
+
+    def _load_maps(self, options: GenerateOptions) -> None:
+        from arise.maps.registry import MapRegistry
+
+        self.registry = MapRegistry(options.map_dir)
+        self.maps = {name: entry.features for name, entry in self.registry.entries.items()}
+
+    @staticmethod
+    def _provider_key(options: GenerateOptions) -> tuple[object, ...]:
+        """What the provider is built from; a replayed run index has its own cassette reader."""
+        return (options.provider, options.model, options.threads, options.cache,
+                options.record, options.replay, options.run_index if options.replay else None)
 
     def reconfigure(self, options: GenerateOptions) -> None:
-        """Use other per-run options (mode, temperature, seed, run) with the same KB, maps,
-        validator and model; a replayed run index needs its own cassette reader."""
-        if (self._provider is not None and self._own_provider and options.replay
-                and options.run_index != self.options.run_index):
+        """Use other options for the next runs. Per-run options (mode, temperature, seed,
+        budgets, simulator) just change; another KB or map folder is loaded; another model
+        gets a new provider, unless the caller gave this generator its provider: then
+        ReconfigureError, and nothing changes."""
+        new_provider = self._provider_key(options) != self._provider_key(self.options)
+        if new_provider and not self._own_provider:
+            changed = [name for name in ("provider", "model", "threads", "cache", "record",
+                                         "replay", "run_index")
+                       if getattr(options, name) != getattr(self.options, name)]
+            raise ReconfigureError(f"this generator was given its model; it cannot change "
+                                   f"{', '.join(changed)}: build a new Generator")
+        if new_provider and self._provider is not None:
             self._provider.close()
             self._provider = None
+        if (options.kb_dirs, options.retrieval) != (self.options.kb_dirs,
+                                                    self.options.retrieval):
+            self._load_kb(options)
+        if options.map_dir != self.options.map_dir:
+            self._load_maps(options)
         self.options = options
 
     @property
@@ -186,27 +157,31 @@ class Generator:
     # -- one description -------------------------------------------------------------------
     def generate(self, description: str, out_dir: Path | None = None,
                  progress: Progress | None = None) -> Generation:
-        options = self.options
-        run = Generation(description=description, options=options, out_dir=out_dir)
+        """One description through modules A-D. Never raises for a bad description or a
+        failing model: the run's status and message say what happened."""
+        run = Generation(description=description, options=self.options, out_dir=out_dir)
         started = time.perf_counter()
-        emit = progress or (lambda event: None)
+        emit = progress or ignore
         refusal = check_description(description)
         if refusal:
-            run.status, run.message = "refused", refusal
+            run.end(Outcome(RunStatus.REFUSED, refusal))
             return run
         usage_before = self._provider.total if self._provider is not None else Usage()
+        outcome: Outcome | None = None
         try:
-            self._run(run, emit)
+            outcome = self._run(run, emit)
         except LLMError as error:
-            run.status, run.message = "provider_error", str(error)
-        finally:
+            outcome = Outcome(RunStatus.PROVIDER_ERROR, str(error))
+        finally:  # also when a bug escapes: what was done so far is saved
             run.seconds = time.perf_counter() - started
             if self._provider is not None:
                 run.usage = self._provider.total - usage_before
+            if outcome is not None:
+                run.end(outcome)
             if run.ok and run.spec is not None and run.final_check is not None:
                 run.conformity = self.conformity_of(run.spec, run.final_check).as_dict()
             self._save(run, final=True)
-        emit({"event": "done", "status": run.status, "summary": run.summary()})
+        emit(RunFinished(run.status, run.summary()))
         return run
 
     def check_options(self, png: str | None = None) -> CheckOptions:
@@ -222,52 +197,43 @@ class Generator:
         features = self.maps.get(result.map.name, frozenset()) if result.map else frozenset()
         return check_conformity(spec, result.simulation, features)
 
-    def _validate(self, script: str, run: Generation) -> CheckResult:
-        png = str(run.out_dir / "scene.png") if run.out_dir else None
-        result = check_text(script, self.check_options(png), pool=self.pool,
-                            registry=self.registry)
-        if result.ok and self.options.semantic_gate and run.spec is not None:
-            result = self._semantic_gate(result, run.spec)
-        run.final_check = result
-        return result
+    def validator(self, out_dir: Path | None, spec: ScenarioSpec | None) -> Validate:
+        """How the repair loop validates a script of this run: the check, then the semantic
+        gate when it is on."""
+        options = self.check_options(str(out_dir / "scene.png") if out_dir else None)
 
-    def _semantic_gate(self, result: CheckResult, spec: ScenarioSpec) -> CheckResult:
-        """A script that runs but contradicts the spec fails, naming the section to change."""
-        conformity = self.conformity_of(spec, result)
-        wrong = [c for c in conformity.checks if c.ok is False and c.name in GATED_CHECKS]
-        if not wrong:
+        def validate(script: str) -> CheckResult:
+            if self._checker is not None:
+                result = self._checker(script, options)
+            else:
+                result = check_text(script, options, pool=self.pool, registry=self.registry)
+            if result.ok and self.options.semantic_gate and spec is not None:
+                result = semantic_gate(result, self.conformity_of(spec, result))
             return result
-        diagnostic = Diagnostic(
-            stage=Stage.SEMANTIC, error_type="ConformityMismatch",
-            message="; ".join(f"{c.name}: expected {c.expected}, observed {c.observed}"
-                              for c in wrong),
-            section=GATED_CHECKS[wrong[0].name],
-            hint="the script runs but does not do what the description says")
-        return result.model_copy(update={"ok": False, "diagnostic": diagnostic})
 
-    def _run(self, run: Generation, emit: Progress) -> None:
+        return validate
+
+    def _run(self, run: Generation, emit: Progress) -> Outcome:
+        """Modules A-C fill in the run's spec, retrieval and draft; the repair loop adds
+        the attempts. Returns how the run ended."""
         options = self.options
-        emit({"event": "stage", "stage": "extract"})
+        emit(StageStarted(RunStage.EXTRACT))
         extraction = extract_spec(run.description, self.provider,
                                   temperature=options.temperature, seed=options.seed)
         if extraction.spec is None:
-            run.status, run.message = "refused", extraction.error
-            return
+            return Outcome(RunStatus.REFUSED, extraction.error)
         hinted, run.hint_notes = apply_hints(run.description, extraction.spec)
         run.spec, dropped = keep_stated_requirements(run.description, hinted)
         run.hint_notes += dropped
         run.contradictions = extraction.contradictions
         spec = run.spec
-        emit({"event": "stage", "stage": "retrieve"})
+        emit(StageStarted(RunStage.RETRIEVE))
         if options.mode is Mode.CHATSCENE:
             run.retrieval = chatscene_retrieval(spec, self.kb, self.retriever, self.maps)
         else:
-            run.retrieval = retrieve(spec, self.kb, self.retriever, self.maps, run.description)
-            for component, entries in run.retrieval.candidates.items():
-                if component in (Component.MISC, Component.REQUIREMENTS):
-                    continue
-                run.retrieval.candidates[component] = entries[: max(options.topk, 1) + 8]
-        emit({"event": "stage", "stage": "assemble"})
+            run.retrieval = retrieve(spec, self.kb, self.retriever, self.maps, run.description,
+                                     topk=options.topk)
+        emit(StageStarted(RunStage.ASSEMBLE))
         adversary = spec.adversary_type.scenic_class
         try:
             params: dict[str, str] = {}
@@ -276,57 +242,24 @@ class Generator:
                                             self.provider, temperature=options.temperature,
                                             seed=options.seed)
                 run.retrieval.notes += notes
-            run.draft = assemble(run.retrieval, adversary, run.description, params)
+            draft = assemble(run.retrieval, adversary, run.description, params)
         except ComposeError as error:
-            run.status, run.message = "failed", f"the retrieved snippets do not fit: {error}"
-            run.attempts.append(Attempt(
-                index=0, kind="initial", detail="compose", script="", ok=False,
-                diagnostic=Diagnostic(stage=Stage.COMPILE, error_type="ComposeError",
-                                      message=str(error)),
-                diff="", check_seconds=0.0))
-            return
-        script = run.draft.script
-        emit({"event": "stage", "stage": "validate", "attempt": 0})
-        attempt = run_attempt(0, "initial", "assembled from the knowledge base", "", script,
-                              lambda text: self._validate(text, run), Usage())
-        self._record(run, attempt, emit)
-        if options.mode is not Mode.ARISE:
-            run.status = "executed" if attempt.ok else "failed"
-            return
-        context = RepairContext(
-            description=run.description, retrieval=run.retrieval, draft=run.draft,
+            run.add_attempt(compose_failure(error))
+            return Outcome(RunStatus.FAILED, f"the retrieved snippets do not fit: {error}")
+        run.use_draft(draft)
+        context = None if options.mode is not Mode.ARISE else RepairContext(
+            description=run.description, retrieval=run.retrieval, draft=draft,
             provider=self.provider, maps=self.maps, temperature=options.temperature,
             seed=options.seed,
             rules=RuleContext(adversary_class=adversary,
                               param_defaults={name: default for name, (default, _) in
                                               declared_params(list(self.kb)).items()}))
-        while not attempt.ok and len(run.attempts) <= options.max_repairs:
-            assert attempt.diagnostic is not None
-            emit({"event": "stage", "stage": "repair", "attempt": len(run.attempts),
-                  "error": attempt.diagnostic.one_line()})
-            repaired, kind, detail, usage = repair_once(context, attempt.script,
-                                                        attempt.diagnostic)
-            if repaired is None:
-                run.message = f"no repair left for: {attempt.diagnostic.one_line()}"
-                break
-            attempt = run_attempt(len(run.attempts), kind, detail, attempt.script, repaired,
-                                  lambda text: self._validate(text, run), usage)
-            note_llm_failure(context, attempt)
-            run.draft = context.draft if kind == "swap" else run.draft
-            self._record(run, attempt, emit)
-        run.status = "executed" if attempt.ok else "failed"
-        if not attempt.ok and run.message is None and attempt.diagnostic is not None:
-            run.message = f"repair budget spent; last error: {attempt.diagnostic.one_line()}"
-
-    def _record(self, run: Generation, attempt: Attempt, emit: Progress) -> None:
-        run.attempts.append(attempt)
-        emit({"event": "attempt", "index": attempt.index, "kind": attempt.kind,
-              "ok": attempt.ok, "detail": attempt.detail,
-              "error": attempt.diagnostic.one_line() if attempt.diagnostic else None})
-        self._save(run, final=False)
+        return repair_loop(run, draft.script, self.validator(run.out_dir, spec), context,
+                           max_repairs=options.max_repairs, emit=emit,
+                           on_attempt=lambda attempt: self._save(run, final=False))
 
     def _save(self, run: Generation, final: bool) -> None:
-        if run.out_dir is None or run.status == "refused":
+        if run.out_dir is None or run.status is RunStatus.REFUSED:
             return
         if run.attempts:
             last = run.attempts[-1]
@@ -335,6 +268,14 @@ class Generator:
             if final and last.script:
                 write_script(run.out_dir, last.script, last.ok)
         write_report(run.out_dir, run.report())
+
+
+def compose_failure(error: ComposeError) -> Attempt:
+    """The attempt that records snippets that did not fit together (nothing was run)."""
+    return Attempt(index=0, kind=AttemptKind.INITIAL, detail="compose", script="", ok=False,
+                   diagnostic=Diagnostic(stage=Stage.COMPILE, error_type="ComposeError",
+                                         message=str(error)),
+                   diff="", check_seconds=0.0)
 
 
 def generate(description: str, options: GenerateOptions | None = None,

@@ -7,81 +7,45 @@ last resort the next retrieved candidate for that section. Every attempt is kept
 
 from __future__ import annotations
 
-import difflib
 import re
 import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
-from typing import Any
 
 from arise.generate.assemble import Draft, apply_params
+from arise.generate.events import AttemptChecked, Progress, RunStage, StageStarted, ignore
 from arise.generate.retrieve import Retrieval
 from arise.generate.rules import RuleContext, apply_rules
+from arise.generate.run import Attempt, AttemptKind, Generation, Outcome, RunStatus, unified_diff
 from arise.kb.compose import ComposeError, compose, composition_problems, pick_map
 from arise.kb.schema import Component, Entry
 from arise.llm.base import BaseProvider
 from arise.llm.types import Message, Usage
 from arise.prompts import load
+from arise.sections import replace_section, section_body
 from arise.validate.types import CheckResult, Diagnostic, Stage
 
 SECTION_COMPONENT = {c.section: c for c in Component}
 _CODE_BLOCK = re.compile(r"```(?:scenic|python)?\s*\n(.*?)```", re.S)
+#: A section's model repairs that may fail before only swaps are tried for it.
+MODEL_TRIES_PER_SECTION = 2
+
+Validate = Callable[[str], CheckResult]
+OnAttempt = Callable[[Attempt], None]
 
 
-@dataclass
-class Attempt:
-    """One validated version of the script and how it came to be."""
+@dataclass(frozen=True)
+class RepairStep:
+    """The one result of a repair step: a new script (None: nothing left to try), how it
+    was made, what the model cost, and the new draft when a candidate was swapped in."""
 
-    index: int
-    kind: str  # initial | rule | llm | swap
+    script: str | None
+    kind: AttemptKind
     detail: str
-    script: str
-    ok: bool
-    diagnostic: Diagnostic | None
-    diff: str
-    check_seconds: float
-    llm_usage: Usage = field(default_factory=Usage)
-
-    def as_dict(self) -> dict[str, Any]:
-        return {
-            "index": self.index, "kind": self.kind, "detail": self.detail, "ok": self.ok,
-            "diagnostic": self.diagnostic.model_dump(mode="json") if self.diagnostic else None,
-            "diff": self.diff, "check_seconds": round(self.check_seconds, 3),
-            "llm": self.llm_usage.as_dict(),
-        }
-
-
-def unified_diff(before: str, after: str) -> str:
-    return "".join(difflib.unified_diff(before.splitlines(True), after.splitlines(True),
-                                        "before.scenic", "after.scenic", n=1))
-
-
-def section_span(script: str, name: str) -> tuple[int, int] | None:
-    """0-based line indexes of the BEGIN and END markers of a section."""
-    lines = script.split("\n")
-    begin = next((i for i, line in enumerate(lines) if line.strip() == f"# BEGIN {name}"), None)
-    if begin is None:
-        return None
-    end = next((i for i in range(begin + 1, len(lines)) if lines[i].strip() == f"# END {name}"),
-               None)
-    return None if end is None else (begin, end)
-
-
-def replace_section(script: str, name: str, body: str) -> str | None:
-    span = section_span(script, name)
-    if span is None:
-        return None
-    lines = script.split("\n")
-    body_lines = [line for line in body.strip("\n").split("\n")
-                  if line.strip() not in (f"# BEGIN {name}", f"# END {name}")]
-    return "\n".join(lines[: span[0] + 1] + body_lines + lines[span[1]:])
-
-
-def section_body(script: str, name: str) -> str:
-    span = section_span(script, name)
-    if span is None:
-        return ""
-    return "\n".join(script.split("\n")[span[0] + 1: span[1]])
+    usage: Usage = field(default_factory=Usage)
+    draft: Draft | None = None
+    # A section the model was asked to rewrite and answered nothing usable for.
+    model_failed_on: str | None = None
 
 
 def extract_code(reply: str) -> str | None:
@@ -103,6 +67,8 @@ def guilty_section(diagnostic: Diagnostic) -> str | None:
 
 @dataclass
 class RepairContext:
+    """What repairs need beyond the script, and what they remember between steps."""
+
     description: str
     retrieval: Retrieval
     draft: Draft
@@ -114,10 +80,18 @@ class RepairContext:
     tried: dict[str, set[str]] = field(default_factory=dict)  # section -> entry ids swapped in
     maps: dict[str, frozenset[str]] = field(default_factory=dict)  # map name -> features
 
+    def count_model_failure(self, section: str) -> None:
+        self.llm_failures[section] = self.llm_failures.get(section, 0) + 1
+
+    def model_may_repair(self, section: str | None, diagnostic: Diagnostic) -> bool:
+        return (self.provider is not None and section is not None and section != "HEADER"
+                and self.llm_failures.get(section, 0) < MODEL_TRIES_PER_SECTION
+                and diagnostic.stage is not Stage.GATE)
+
 
 def llm_repair(context: RepairContext, script: str, diagnostic: Diagnostic, section: str
-               ) -> tuple[str | None, Usage, str]:
-    """Ask the model for the failing section back; None when its answer is unusable."""
+               ) -> RepairStep:
+    """Ask the model for the failing section back; no script when its answer is unusable."""
     assert context.provider is not None
     component = SECTION_COMPONENT[section]
     examples = [e for e in context.retrieval.candidates.get(component, [])[:3]
@@ -137,14 +111,16 @@ def llm_repair(context: RepairContext, script: str, diagnostic: Diagnostic, sect
         temperature=context.temperature, max_tokens=700, seed=context.seed)
     code = extract_code(completion.text)
     if code is None:
-        return None, completion.usage, "the model returned no code"
+        return RepairStep(None, AttemptKind.LLM, "the model returned no code", completion.usage,
+                          model_failed_on=section)
     repaired = replace_section(script, section, code)
     if repaired is None or repaired == script:
-        return None, completion.usage, "the model returned the section unchanged"
-    return repaired, completion.usage, f"model rewrote {section}"
+        return RepairStep(None, AttemptKind.LLM, "the model returned the section unchanged",
+                          completion.usage, model_failed_on=section)
+    return RepairStep(repaired, AttemptKind.LLM, f"model rewrote {section}", completion.usage)
 
 
-def swap_candidate(context: RepairContext, section: str | None) -> tuple[str | None, str]:
+def swap_candidate(context: RepairContext, section: str | None) -> RepairStep:
     """Replace the entry of the failing section by the next compatible candidate."""
     order = [section] if section else []
     order += [s for s in ("SPAWN", "BEHAVIOR", "GEOMETRY", "MISC", "REQUIREMENTS")
@@ -181,51 +157,90 @@ def swap_candidate(context: RepairContext, section: str | None) -> tuple[str | N
                              description=context.description)
         except ComposeError:
             continue
-        context.draft = Draft(script=apply_params(script, draft.params), entries=entries,
-                              map_name=map_name, adversary_class=draft.adversary_class,
-                              params=draft.params)
-        return context.draft.script, note
-    return None, "no other candidate fits"
+        new_draft = Draft(script=apply_params(script, draft.params), entries=entries,
+                          map_name=map_name, adversary_class=draft.adversary_class,
+                          params=draft.params)
+        return RepairStep(new_draft.script, AttemptKind.SWAP, note, draft=new_draft)
+    return RepairStep(None, AttemptKind.SWAP, "no other candidate fits")
 
 
-Validate = Callable[[str], CheckResult]
-
-
-def repair_once(context: RepairContext, script: str, diagnostic: Diagnostic
-                ) -> tuple[str | None, str, str, Usage]:
-    """One repair step: (new script or None, kind, detail, model usage)."""
+def repair_once(context: RepairContext, script: str, diagnostic: Diagnostic) -> RepairStep:
+    """One repair step, routed by the diagnostic: rule, else model, else swap."""
     if diagnostic.stage is Stage.SEMANTIC:
         # The script runs: editing numbers will not change who or where; another entry will.
-        swapped, note = swap_candidate(context, guilty_section(diagnostic))
-        return swapped, "swap", note, Usage()
+        return swap_candidate(context, guilty_section(diagnostic))
     fix = apply_rules(diagnostic, script, context.rules)
     if fix is not None:
-        return fix.text, "rule", f"{fix.rule}: {fix.note}", Usage()
+        return RepairStep(fix.text, AttemptKind.RULE, f"{fix.rule}: {fix.note}")
     section = guilty_section(diagnostic)
-    if context.provider is not None and section is not None and section != "HEADER" \
-            and context.llm_failures.get(section, 0) < 2 and diagnostic.stage is not Stage.GATE:
-        repaired, usage, note = llm_repair(context, script, diagnostic, section)
-        if repaired is not None:
-            return repaired, "llm", note, usage
-        context.llm_failures[section] = context.llm_failures.get(section, 0) + 1
-        swapped, swap_note = swap_candidate(context, section)
-        return swapped, "swap", f"{note}; {swap_note}", usage
-    swapped, note = swap_candidate(context, section)
-    return swapped, "swap", note, Usage()
+    if context.model_may_repair(section, diagnostic):
+        assert section is not None
+        step = llm_repair(context, script, diagnostic, section)
+        if step.script is not None:
+            return step
+        swap = swap_candidate(context, section)
+        return RepairStep(swap.script, AttemptKind.SWAP, f"{step.detail}; {swap.detail}",
+                          step.usage, swap.draft, model_failed_on=section)
+    return swap_candidate(context, section)
 
 
-def note_llm_failure(context: RepairContext, attempt: Attempt) -> None:
-    """An LLM repair that did not run counts against its section (then we swap)."""
-    if attempt.kind == "llm" and not attempt.ok and attempt.diagnostic is not None:
-        section = guilty_section(attempt.diagnostic)
-        if section:
-            context.llm_failures[section] = context.llm_failures.get(section, 0) + 1
-
-
-def run_attempt(index: int, kind: str, detail: str, before: str, script: str,
+def run_attempt(index: int, kind: AttemptKind, detail: str, before: str, script: str,
                 validate: Validate, usage: Usage) -> Attempt:
     started = time.perf_counter()
     result = validate(script)
     return Attempt(index=index, kind=kind, detail=detail, script=script, ok=result.ok,
                    diagnostic=result.diagnostic, diff=unified_diff(before, script),
-                   check_seconds=time.perf_counter() - started, llm_usage=usage)
+                   check_seconds=time.perf_counter() - started, llm_usage=usage,
+                   check=result)
+
+
+def repair_loop(run: Generation, script: str, validate: Validate,
+                context: RepairContext | None, *, max_repairs: int,
+                emit: Progress = ignore, on_attempt: OnAttempt | None = None) -> Outcome:
+    """Module D: validate the assembled script, then repair it until it runs or
+    `max_repairs` repairs are spent (no repairs at all when `context` is None).
+
+    This loop is the only place that adds attempts to `run` and swaps its draft. Provider
+    errors propagate (the caller ends the run with them); every attempt made before stays.
+    """
+
+    def add(attempt: Attempt) -> Attempt:
+        run.add_attempt(attempt)
+        emit(AttemptChecked(attempt.index, attempt.kind, attempt.ok, attempt.detail,
+                            attempt.diagnostic.one_line() if attempt.diagnostic else None))
+        if on_attempt is not None:
+            on_attempt(attempt)
+        return attempt
+
+    emit(StageStarted(RunStage.VALIDATE, attempt=len(run.attempts)))
+    attempt = add(run_attempt(len(run.attempts), AttemptKind.INITIAL,
+                              "assembled from the knowledge base", "", script, validate,
+                              Usage()))
+    if context is None:
+        return Outcome(RunStatus.EXECUTED if attempt.ok else RunStatus.FAILED)
+    while not attempt.ok and len(run.attempts) <= max_repairs:
+        diagnostic = attempt.diagnostic
+        assert diagnostic is not None
+        emit(StageStarted(RunStage.REPAIR, attempt=len(run.attempts),
+                          error=diagnostic.one_line()))
+        step = repair_once(context, attempt.script, diagnostic)
+        if step.model_failed_on is not None:
+            context.count_model_failure(step.model_failed_on)
+        if step.script is None:
+            return Outcome(RunStatus.FAILED, f"no repair left for: {diagnostic.one_line()}")
+        if step.draft is not None:
+            context.draft = step.draft
+            run.use_draft(step.draft)
+        attempt = run_attempt(len(run.attempts), step.kind, step.detail, attempt.script,
+                              step.script, validate, step.usage)
+        if step.kind is AttemptKind.LLM and not attempt.ok and attempt.diagnostic is not None:
+            # A model repair that did not run counts against the section now failing.
+            failing = guilty_section(attempt.diagnostic)
+            if failing:
+                context.count_model_failure(failing)
+        add(attempt)
+    if attempt.ok:
+        return Outcome(RunStatus.EXECUTED)
+    last = attempt.diagnostic
+    return Outcome(RunStatus.FAILED,
+                   f"repair budget spent; last error: {last.one_line()}" if last else None)

@@ -41,6 +41,8 @@ SPAWN_TAGS: dict[RelativePosition, tuple[str, ...]] = {
     RelativePosition.CROSSING_FROM_RIGHT: ("conflict", "cross_traffic", "crossing", "right"),
 }
 MAX_MISC = 3
+#: Components whose candidate lists are pools to drop from, not ranked fall-backs.
+POOLED = (Component.MISC, Component.REQUIREMENTS)
 
 
 @dataclass
@@ -54,6 +56,13 @@ class Retrieval:
 
     def chosen_entries(self) -> list[Entry]:
         return [entry for component in Component for entry in self.chosen.get(component, [])]
+
+    def keep(self, topk: int) -> None:
+        """Keep the first `topk` candidates of each ranked component (the chosen entry is
+        always first); misc and requirements keep their whole pools."""
+        for component, entries in self.candidates.items():
+            if component not in POOLED:
+                self.candidates[component] = entries[: max(topk, 1)]
 
     def ids(self) -> dict[str, list[str]]:
         return {c.value: [e.id for e in entries] for c, entries in self.candidates.items()}
@@ -119,8 +128,9 @@ def _geometry_pool(spec: ScenarioSpec, entries: list[Entry],
 def retrieve(spec: ScenarioSpec, kb: KnowledgeBase, retriever: Retriever,
              maps: Mapping[str, frozenset[str]], description: str = "",
              pick_map: Callable[[list[Entry], Mapping[str, frozenset[str]]], str | None]
-             | None = None) -> Retrieval:
-    """Candidates per component for `spec`, and one consistent choice of entries."""
+             | None = None, topk: int | None = None) -> Retrieval:
+    """Candidates per component for `spec` (the first `topk` of each, all when None), and
+    one consistent choice of entries."""
     from arise.kb.compose import pick_map as default_pick_map
 
     choose_map = pick_map or default_pick_map
@@ -165,6 +175,8 @@ def retrieve(spec: ScenarioSpec, kb: KnowledgeBase, retriever: Retriever,
             _add_extras(spec, kb, retriever, maps, choose_map, result, both | set(
                 behaviors[0].defines), query)
             result.map_name = choose_map(result.chosen_entries(), maps)
+            if topk is not None:
+                result.keep(topk)
             return result
     result.notes.append(f"no compatible geometry/spawn/behavior for a {adversary}")
     return result

@@ -19,6 +19,7 @@ from arise.kb.schema import (
     Component,
     Entry,
 )
+from arise.sections import MarkerKind, parse_marker, write_section
 
 SINGLE = (Component.BEHAVIOR, Component.GEOMETRY, Component.SPAWN)  # exactly one each
 OPTIONAL_SINGLE = (Component.WEATHER,)  # at most one
@@ -38,13 +39,11 @@ def header(map_name: str) -> str:
     """The HEADER section for one of the registry's maps (resolved by name)."""
     if not re.match(r"^[A-Za-z0-9_.-]+$", map_name):
         raise ComposeError([f"map name {map_name!r} is not a plain map name"])
-    return "\n".join([
-        "# BEGIN HEADER",
+    return "\n".join(write_section("HEADER", [
         f"param map = localPath('maps/{map_name}.xodr')",
         f"param carla_map = '{map_name}'",
         "model scenic.simulators.carla.model",
-        "# END HEADER",
-    ])
+    ]))
 
 
 def composition_problems(entries: Sequence[Entry], adversary_class: str) -> list[str]:
@@ -151,9 +150,7 @@ def compose(
         if component is Component.REQUIREMENTS and terminate_after is not None and not any(
                 re.search(r"^\s*terminate\b", e.snippet, re.M) for e in chosen):
             body.append(f"terminate after {terminate_after:g} seconds")
-        lines.append(f"# BEGIN {component.section}")
-        lines += body
-        lines.append(f"# END {component.section}")
+        lines += write_section(component.section, body)
     return "\n".join(lines) + "\n"
 
 
@@ -166,9 +163,10 @@ def entry_at_line(script: str, line: int | None) -> str | None:
         if number > line:
             break
         mark = ENTRY_MARK.match(text)
+        marker = parse_marker(text)
         if mark:
             found = mark.group(1)
-        elif text.startswith("# END "):
+        elif marker is not None and marker.kind is MarkerKind.END:
             found = None
     return found
 

@@ -15,13 +15,31 @@ from collections.abc import Iterable
 from pathlib import Path
 from types import TracebackType
 
+from arise.sections import section_of_line
 from arise.validate.script_info import ScriptInfo
-from arise.validate.sections import excerpt, section_of_line
 from arise.validate.types import Diagnostic, Rejection, Stage
 
 _REQUIREMENT_LINE = re.compile(r"requirement on line (\d+)")
 _NAME_ERROR = re.compile(r"name '(\w+)' is not defined")
 _BLUEPRINT = re.compile(r"""blueprint ['"]?([\w.\-]+)['"]?""")
+
+
+def excerpt(text: str, line: int | None, context: int = 2, column: int | None = None) -> str | None:
+    """A few numbered lines around `line`, the guilty one marked with '>'."""
+    if line is None:
+        return None
+    lines = text.splitlines()
+    if not 1 <= line <= len(lines):
+        return None
+    start, stop = max(1, line - context), min(len(lines), line + context)
+    width = len(str(stop))
+    out = []
+    for number in range(start, stop + 1):
+        mark = ">" if number == line else " "
+        out.append(f"{mark} {number:>{width}} | {lines[number - 1]}")
+        if number == line and column is not None and column > 0:
+            out.append(" " * (width + 5 + column - 1) + "^")
+    return "\n".join(out)
 
 
 def locate(text: str, line: int | None, column: int | None = None) -> dict[str, object]:
