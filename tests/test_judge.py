@@ -9,14 +9,15 @@ import os
 from pathlib import Path
 
 import pytest
-import typer
 from typer.testing import CliRunner
 
+from arise.cli import app
 from arise.evaluate import judge_cli
 from arise.evaluate.judge import (
     CRITERIA,
     MAX_TOKENS,
     REASON_CHARS,
+    JudgeInputError,
     Judgement,
     WeightsError,
     compact_script,
@@ -208,7 +209,7 @@ def test_an_out_of_range_score_is_re_asked_then_fails_as_a_provider_error() -> N
 
 def test_judge_refuses_bad_input_and_bad_weights_before_calling_the_model() -> None:
     model = Scripted([])
-    with pytest.raises(ValueError, match="empty"):
+    with pytest.raises(JudgeInputError, match="empty"):
         judge_script("", SCRIPT, model)
     with pytest.raises(WeightsError):
         judge_script(PEDESTRIAN, SCRIPT, model, weights={"weather": -1})
@@ -293,13 +294,11 @@ def test_recorded_consistency_of_three_sampled_repeats() -> None:
 
 # ------------------------------------------------------------------------------------ CLI
 
-app = typer.Typer(add_completion=False, pretty_exceptions_enable=False)
-app.command(help=judge_cli.JUDGE_HELP)(judge_cli.judge_command)
 runner = CliRunner()
 
 
 def invoke(*args: str):
-    return runner.invoke(app, list(args))
+    return runner.invoke(app, ["judge", *args])
 
 
 def test_cli_help_has_examples() -> None:

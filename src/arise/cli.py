@@ -1,20 +1,82 @@
-"""Command line: a thin layer; every command is one call into the library."""
+"""Command line: a thin layer; every command is one call into the library.
+
+Errors are handled once, here, for every command (sub-commands included): an `AriseError`
+is printed on one line and exits with its code (2, or 1 for a model that failed); any other
+exception is a bug in arise, so its traceback goes to a crash report file under the user
+cache and the user is told where it is.
+"""
 
 from __future__ import annotations
 
+import os
+import platform
+import shlex
+import sys
+import traceback
 import warnings
+from datetime import datetime
+from pathlib import Path
+from typing import Any
 
 import typer
+from rich.console import Console
+from rich.markup import escape
+from typer.core import TyperGroup
 
-from arise.doctor import DOCTOR_HELP, doctor_command
+from arise import __version__
+from arise.errors import AriseError
 from arise.evaluate.cli import BENCH_HELP, REPORT_HELP, bench_command, report_command
 from arise.evaluate.judge_cli import JUDGE_HELP, judge_command
 from arise.generate.cli import GENERATE_HELP, generate_command
+from arise.kb.cli import app as kb_app
 from arise.llm.cli import app as llm_app
+from arise.paths import cache_dir
 from arise.validate.cli import CHECK_HELP, blueprints_command, check_command, maps_app
+
+#: Exit code of a crash (a bug in arise), as BSD's EX_SOFTWARE.
+CRASH_EXIT = 70
+
+errors = Console(stderr=True, soft_wrap=True)
+
+
+def write_crash_report(error: BaseException) -> Path:
+    """Write what is needed to reproduce a crash; returns the file."""
+    folder = cache_dir() / "crashes"
+    folder.mkdir(parents=True, exist_ok=True)
+    path = folder / f"crash-{datetime.now():%Y%m%d-%H%M%S}-{os.getpid()}.txt"
+    path.write_text(
+        f"arise {__version__} crashed\n"
+        f"command: {shlex.join(sys.argv)}\n"
+        f"python: {sys.version.split()[0]} on {platform.platform()}\n\n"
+        + "".join(traceback.format_exception(error)), encoding="utf-8")
+    return path
+
+
+class AriseGroup(TyperGroup):
+    """The root command: catches AriseError and unexpected exceptions once, for all."""
+
+    def invoke(self, ctx: Any) -> Any:
+        try:
+            return super().invoke(ctx)
+        except (typer.Exit, typer.Abort, typer.TyperException):  # usage errors, exits
+            raise
+        except AriseError as error:
+            errors.print(f"[red]error:[/red] {escape(str(error))}", highlight=False)
+            ctx.exit(error.exit_code)
+        except Exception as error:  # noqa: BLE001  (a bug: report it, do not dump it)
+            try:
+                report = write_crash_report(error)
+            except OSError:
+                raise error from None
+            errors.print(f"[red]arise crashed[/red] (a bug in arise): {escape(type(error).__name__)}"
+                         f": {escape(str(error))}\nThe details are in {escape(str(report))};"
+                         " please attach that file to a bug report.", highlight=False)
+            ctx.exit(CRASH_EXIT)
+
 
 app = typer.Typer(
     name="arise",
+    cls=AriseGroup,
     help="Natural-language traffic scenarios -> executable Scenic 3 scripts, proven to run.",
     no_args_is_help=True,
     add_completion=False,
@@ -26,10 +88,9 @@ app.command("bench", help=BENCH_HELP)(bench_command)
 app.command("report", help=REPORT_HELP)(report_command)
 app.command("judge", help=JUDGE_HELP)(judge_command)
 app.command("blueprints")(blueprints_command)
-app.command("doctor", help=DOCTOR_HELP)(doctor_command)
 app.add_typer(maps_app, name="maps")
 app.add_typer(llm_app, name="llm")
-from arise.kb.cli import app as kb_app; app.add_typer(kb_app, name="kb")  # noqa: E402, E702, I001
+app.add_typer(kb_app, name="kb")
 
 
 def main() -> None:

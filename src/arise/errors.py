@@ -10,3 +10,7 @@ from __future__ import annotations
 
 class AriseError(Exception):
     """Something arise could not do, said in one line a user can act on."""
+
+    #: The command line's exit code for it: 2 is a usage error (the input can be fixed);
+    #: a package whose errors mean "the work failed" (e.g. the model) sets 1.
+    exit_code: int = 2

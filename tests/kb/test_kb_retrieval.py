@@ -10,6 +10,7 @@ from arise.kb.retrieval import (
     EmbeddingRetriever,
     EmbeddingUnavailable,
     HybridRetriever,
+    RetrieverError,
     find_model,
     make_retriever,
 )
@@ -59,7 +60,7 @@ def test_terms_fold_synonyms_and_suffixes() -> None:
 def test_auto_falls_back_to_bm25_without_a_model(monkeypatch: pytest.MonkeyPatch) -> None:
     monkeypatch.setattr("arise.kb.retrieval.find_model", lambda model=None: None)
     assert make_retriever(KB, "auto").name == "bm25"
-    with pytest.raises(ValueError):
+    with pytest.raises(RetrieverError, match="unknown retrieval backend"):
         make_retriever(KB, "tfidf")
 
 

@@ -16,7 +16,7 @@ from rich.progress import (
     TimeRemainingColumn,
 )
 
-from arise.evaluate.prompt_file import PromptFileError, read_prompts
+from arise.evaluate.prompt_file import read_prompts
 from arise.evaluate.records import RunRecord
 from arise.evaluate.report import write_report
 from arise.evaluate.runner import (
@@ -28,7 +28,7 @@ from arise.evaluate.runner import (
     run_bench,
     unjudged,
 )
-from arise.evaluate.store import BenchStore, BenchStoreError
+from arise.evaluate.store import BenchStore
 from arise.generate.options import GenerateOptions, Mode
 from arise.llm.cli_options import ModelOption, ProviderOption, ReplayOption
 
@@ -127,11 +127,7 @@ def bench_command(
     if executor not in EXECUTORS:
         errors.print(f"[red]error:[/red] --executor is one of {', '.join(EXECUTORS)}")
         raise typer.Exit(2)
-    try:
-        items = read_prompts(prompts)
-    except PromptFileError as error:
-        errors.print(f"[red]error:[/red] {error}")
-        raise typer.Exit(2) from None
+    items = read_prompts(prompts)  # PromptFileError: one line, exit 2
     base = GenerateOptions(provider=provider, model=model, max_repairs=max_repairs, seed=seed,
                            map_dir=map_dir, replay=replay, semantic_gate=semantic_gate,
                            cache=cache)
@@ -140,12 +136,7 @@ def bench_command(
                          runs=runs, workers=workers, executor=executor, judge=judge,
                          judge_provider=judge_provider, judge_model=judge_model,
                          ray_address=ray_address)
-    try:
-        store = BenchStore(out / "bench.sqlite")
-    except BenchStoreError as error:
-        errors.print(f"[red]error:[/red] {error}")
-        raise typer.Exit(2) from None
-    with store:
+    with BenchStore(out / "bench.sqlite") as store:  # BenchStoreError: one line, exit 2
         todo = pending(config, store)
         total = len(todo) + len(store.done_keys())
         console.print(f"{len(todo)} run(s) to do, {total - len(todo)} already in "
@@ -160,9 +151,6 @@ def bench_command(
             errors.print("\ninterrupted: finished runs are saved; run the same command to "
                          "resume")
             raise typer.Exit(130) from None
-        except RuntimeError as error:
-            errors.print(f"[red]error:[/red] {error}")
-            raise typer.Exit(1) from None
         records = store.runs()
         written = write_report(records, out / "report", store.meta())
     executed = sum(r.ok for r in records)
@@ -215,15 +203,11 @@ def report_command(
     if not database.is_file():
         errors.print(f"[red]error:[/red] no such database: {database}")
         raise typer.Exit(2)
-    try:
-        with BenchStore(database) as store:
-            if recheck_runs:
-                count = recheck(store)
-                console.print(f"re-checked {count} executed run(s)")
-            records, meta = store.runs(), store.meta()
-    except BenchStoreError as error:
-        errors.print(f"[red]error:[/red] {error}")
-        raise typer.Exit(2) from None
+    with BenchStore(database) as store:  # BenchStoreError: one line, exit 2
+        if recheck_runs:
+            count = recheck(store)
+            console.print(f"re-checked {count} executed run(s)")
+        records, meta = store.runs(), store.meta()
     if not records:
         errors.print(f"[red]error:[/red] {database} holds no finished runs yet")
         raise typer.Exit(2)

@@ -21,6 +21,7 @@ from typing import Any
 
 from pydantic import BaseModel, ConfigDict, Field, field_validator
 
+from arise.errors import AriseError
 from arise.llm.base import BaseProvider
 from arise.llm.types import LLMError, Message, StructuredOutputFailed, Usage
 from arise.prompts import load, load_jsonl
@@ -79,8 +80,12 @@ class JudgeAnswer(BaseModel):
 # --------------------------------------------------------------------------------- weights
 
 
-class WeightsError(ValueError):
+class WeightsError(AriseError):
     """Weights that cannot be used; ``str(error)`` is one line for the user."""
+
+
+class JudgeInputError(AriseError):
+    """A description or script the judge cannot take (see ``input_problem``)."""
 
 
 def weights_problem(weights: Mapping[str, Any] | None) -> str | None:
@@ -260,14 +265,14 @@ def judge_script(description: str, script_text: str, provider: BaseProvider, *,
                  weights: Mapping[str, float] | None = None) -> Judgement:
     """Ask the model for the seven scores of one (description, script) pair.
 
-    Bad input (see ``input_problem``) and bad weights raise ValueError / WeightsError: check
+    Bad input (see ``input_problem``) and bad weights raise JudgeInputError / WeightsError: check
     them first. Provider failures (LLMError, including a reply that never matched the
     schema after the provider's re-asks) propagate for the caller to report.
     """
     full = resolve_weights(weights)
     problem = input_problem(description, script_text)
     if problem:
-        raise ValueError(problem)
+        raise JudgeInputError(problem)
     completion = provider.complete(judge_messages(description, script_text),
                                    temperature=temperature, max_tokens=MAX_TOKENS,
                                    schema=JudgeAnswer, seed=seed)

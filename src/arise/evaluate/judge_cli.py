@@ -11,12 +11,12 @@ from rich.console import Console
 from rich.markup import escape
 from rich.table import Table
 
+from arise.errors import AriseError
 from arise.evaluate.judge import (
     CRITERIA,
     DEFAULT_WEIGHTS,
     Consistency,
     Judgement,
-    WeightsError,
     consistency,
     input_problem,
     judge_script,
@@ -30,7 +30,6 @@ from arise.llm.cli_options import (
     ReplayOption,
 )
 from arise.llm.registry import get_provider
-from arise.llm.types import LLMError
 
 console = Console(soft_wrap=True)
 errors = Console(stderr=True, soft_wrap=True)
@@ -61,8 +60,8 @@ Examples:
 """
 
 
-class UserMistake(Exception):
-    """A bad argument: one line on stderr and exit code 2."""
+class UserMistake(AriseError):
+    """A bad argument: the command line prints it on one line and exits 2."""
 
 
 def load_pair(description: str, script: Path) -> tuple[str, str, Path]:
@@ -122,35 +121,26 @@ def judge_command(
     replay: ReplayOption = None,
     as_json: Annotated[bool, typer.Option("--json", help="Print the result as JSON.")] = False,
 ) -> None:
-    try:
-        if repeat < 1:
-            raise UserMistake("--repeat must be at least 1")
-        if temperature < 0:
-            raise UserMistake("--temperature must be >= 0")
-        try:
-            chosen = parse_weights(weights)
-        except WeightsError as error:
-            raise UserMistake(str(error)) from None
-        text_description, script_text, script = load_pair(description, script)
-    except UserMistake as error:
-        errors.print(f"[red]error:[/red] {escape(str(error))}", highlight=False)
-        raise typer.Exit(2) from None
+    # Mistakes (UserMistake, WeightsError) and model failures (LLMError) are AriseErrors:
+    # the command line prints them on one line (exit 2 and 1).
+    if repeat < 1:
+        raise UserMistake("--repeat must be at least 1")
+    if temperature < 0:
+        raise UserMistake("--temperature must be >= 0")
+    chosen = parse_weights(weights)
+    text_description, script_text, script = load_pair(description, script)
 
     overrides: dict[str, Any] = {"model": model} if model else {}
-    try:
-        llm = get_provider(provider, cache=False if no_cache else None, record=record,
-                           replay=replay, **overrides)
-        with llm:
-            if repeat == 1:
-                result: Judgement | Consistency = judge_script(
-                    text_description, script_text, llm, temperature=temperature, seed=seed,
-                    weights=chosen)
-            else:
-                result = consistency(text_description, script_text, llm, repeat=repeat,
-                                     temperature=temperature, seed=seed, weights=chosen)
-    except LLMError as error:
-        errors.print(f"[red]error:[/red] {escape(str(error))}", highlight=False)
-        raise typer.Exit(1) from None
+    llm = get_provider(provider, cache=False if no_cache else None, record=record,
+                       replay=replay, **overrides)
+    with llm:
+        if repeat == 1:
+            result: Judgement | Consistency = judge_script(
+                text_description, script_text, llm, temperature=temperature, seed=seed,
+                weights=chosen)
+        else:
+            result = consistency(text_description, script_text, llm, repeat=repeat,
+                                 temperature=temperature, seed=seed, weights=chosen)
 
     if as_json:
         payload = {"description": text_description, "script": str(script), **result.as_dict()}

@@ -7,6 +7,8 @@ import json
 from dataclasses import dataclass
 from pathlib import Path
 
+from arise.errors import AriseError
+
 UNCATEGORISED = "uncategorised"
 
 
@@ -17,7 +19,7 @@ class BenchPrompt:
     category: str = UNCATEGORISED
 
 
-class PromptFileError(ValueError):
+class PromptFileError(AriseError):
     """A prompt file we cannot read, with the file and line in the message."""
 
 

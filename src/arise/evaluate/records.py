@@ -1,9 +1,17 @@
-"""What one benchmark run leaves behind: plain data shared by the runner, store and report."""
+"""What one benchmark run leaves behind: plain data shared by the runner, store and report.
+
+A row is read from the run's report (`Generation.report()`, what report.json holds), so a
+bench row and a report.json never disagree.
+"""
 
 from __future__ import annotations
 
 from dataclasses import asdict, dataclass, field
 from typing import Any
+
+from arise.generate.run import AttemptKind, RunStatus
+
+MESSAGE_CHARS = 500  # a diagnostic's message is cut to this in the attempts table
 
 
 @dataclass(frozen=True)
@@ -28,7 +36,7 @@ class BenchTask:
 @dataclass(frozen=True)
 class AttemptRecord:
     index: int
-    kind: str
+    kind: AttemptKind
     ok: bool
     stage: str | None = None
     error_type: str | None = None
@@ -38,13 +46,29 @@ class AttemptRecord:
     llm_calls: int = 0
     tokens: int = 0
 
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "kind", AttemptKind(self.kind))  # also when read as text
+
+    @classmethod
+    def from_report(cls, attempt: dict[str, Any]) -> AttemptRecord:
+        """From one item of a report's "attempts"."""
+        diagnostic = attempt.get("diagnostic") or {}
+        llm = attempt.get("llm") or {}
+        message = diagnostic.get("message")
+        return cls(index=attempt["index"], kind=attempt["kind"], ok=attempt["ok"],
+                   stage=diagnostic.get("stage"), error_type=diagnostic.get("error_type"),
+                   message=message[:MESSAGE_CHARS] if message is not None else None,
+                   section=diagnostic.get("section"), check_seconds=attempt["check_seconds"],
+                   llm_calls=llm.get("calls", 0),
+                   tokens=llm.get("prompt_tokens", 0) + llm.get("completion_tokens", 0))
+
 
 @dataclass
 class RunRecord:
     """A finished run (a success, a failure, a refusal or a provider error)."""
 
     task: BenchTask
-    status: str
+    status: RunStatus
     first_pass_ok: bool
     repairs: int
     llm_calls: int = 0
@@ -59,9 +83,12 @@ class RunRecord:
     judge: dict[str, Any] | None = None
     attempts: list[AttemptRecord] = field(default_factory=list)
 
+    def __post_init__(self) -> None:
+        self.status = RunStatus(self.status)  # also when read as text
+
     @property
     def ok(self) -> bool:
-        return self.status == "executed"
+        return self.status is RunStatus.EXECUTED
 
     @property
     def tokens(self) -> int:
@@ -79,6 +106,20 @@ class RunRecord:
 
     def as_dict(self) -> dict[str, Any]:
         return asdict(self)
+
+    @classmethod
+    def from_report(cls, task: BenchTask, report: dict[str, Any], *, out_dir: str | None,
+                    criticality: dict[str, Any] | None) -> RunRecord:
+        """The row of a run from its report (see `Generation.report`)."""
+        llm = report.get("llm") or {}
+        return cls(task=task, status=report["status"], first_pass_ok=report["first_pass_ok"],
+                   repairs=report["repairs"], llm_calls=llm.get("calls", 0),
+                   prompt_tokens=llm.get("prompt_tokens", 0),
+                   completion_tokens=llm.get("completion_tokens", 0),
+                   seconds=report["seconds"], message=report["message"], out_dir=out_dir,
+                   spec=report["spec"], conformity=report["conformity"],
+                   criticality=criticality,
+                   attempts=[AttemptRecord.from_report(a) for a in report["attempts"]])
 
     @classmethod
     def from_dict(cls, data: dict[str, Any]) -> RunRecord:

@@ -14,15 +14,21 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from arise.errors import AriseError
 from arise.evaluate.criticality import criticality
 from arise.evaluate.prompt_file import BenchPrompt
-from arise.evaluate.records import AttemptRecord, BenchTask, RunRecord
+from arise.evaluate.records import BenchTask, RunRecord
 from arise.evaluate.store import BenchStore
 from arise.generate.options import GenerateOptions, Mode
-from arise.generate.pipeline import Generation, Generator
+from arise.generate.pipeline import Generator
+from arise.generate.run import Generation
 from arise.llm.accounting import UsageLedger
 
 EXECUTORS = ("local", "ray")
+
+
+class ExecutorUnavailable(AriseError):
+    """The benchmark cannot run on the executor asked for (unknown, or Ray is missing)."""
 OnRecord = Callable[[RunRecord], None]
 
 
@@ -67,24 +73,12 @@ def task_dir(out_root: Path, task: BenchTask) -> Path:
 
 
 def record_of(task: BenchTask, run: Generation, out_dir: Path | None) -> RunRecord:
-    """The database row of a generation, with its conformity and criticality facts."""
-    facts = run.final_check.simulation if run.final_check and run.ok else None
-    crit = criticality(facts)
-    return RunRecord(
-        task=task, status=run.status, first_pass_ok=run.first_pass_ok, repairs=run.repairs,
-        llm_calls=run.usage.calls, prompt_tokens=run.usage.prompt_tokens,
-        completion_tokens=run.usage.completion_tokens, seconds=round(run.seconds, 3),
-        message=run.message, out_dir=str(out_dir) if out_dir else None,
-        spec=run.spec.model_dump(mode="json") if run.spec else None,
-        conformity=run.conformity, criticality=crit.as_dict() if crit else None,
-        attempts=[AttemptRecord(
-            index=a.index, kind=a.kind, ok=a.ok,
-            stage=a.diagnostic.stage.value if a.diagnostic else None,
-            error_type=a.diagnostic.error_type if a.diagnostic else None,
-            message=a.diagnostic.message[:500] if a.diagnostic else None,
-            section=a.diagnostic.section if a.diagnostic else None,
-            check_seconds=round(a.check_seconds, 3), llm_calls=a.llm_usage.calls,
-            tokens=a.llm_usage.total_tokens) for a in run.attempts])
+    """The database row of a generation: its report (the one serialisation of a run) plus
+    the criticality of the script that ran."""
+    final = run.final_check
+    crit = criticality(final.simulation if final is not None and run.ok else None)
+    return RunRecord.from_report(task, run.report(), out_dir=str(out_dir) if out_dir else None,
+                                 criticality=crit.as_dict() if crit else None)
 
 
 class TaskRunner:
@@ -149,7 +143,6 @@ def judge_run(judge: UsageLedger, task: BenchTask, out_dir: Path, seed: int | No
               ) -> dict[str, Any]:
     """SCS of the executed script, or why it could not be judged."""
     from arise.evaluate.judge import judge_script
-    from arise.llm.types import LLMError
 
     try:
         script = (out_dir / "scenario.scenic").read_text(encoding="utf-8")
@@ -158,7 +151,7 @@ def judge_run(judge: UsageLedger, task: BenchTask, out_dir: Path, seed: int | No
     try:
         judgement = judge_script(task.description, script, judge,
                                  temperature=0.0, seed=seed)
-    except (LLMError, ValueError) as error:
+    except AriseError as error:  # the model failed, or the pair cannot be judged
         return {"scs": None, "error": str(error)}
     return judgement.as_dict()
 
@@ -223,7 +216,8 @@ def run_ray(tasks: Sequence[BenchTask], config: BenchConfig, out_root: Path
         import ray
         from ray.util import ActorPool
     except ImportError as error:
-        raise RuntimeError("the Ray executor needs Ray: pip install 'arise[ray]'") from error
+        raise ExecutorUnavailable("the Ray executor needs Ray: pip install 'arise[ray]'"
+                                  ) from error
     started_here = not ray.is_initialized()
     if started_here:
         ray.init(address=config.ray_address, include_dashboard=False,
@@ -249,7 +243,8 @@ def run_bench(config: BenchConfig, store: BenchStore, out_root: Path,
               on_record: OnRecord | None = None) -> list[RunRecord]:
     """Run what the database does not hold yet; every finished run is saved at once."""
     if config.executor not in EXECUTORS:
-        raise ValueError(f"unknown executor '{config.executor}': use one of {EXECUTORS}")
+        raise ExecutorUnavailable(f"unknown executor '{config.executor}': use one of "
+                                  f"{', '.join(EXECUTORS)}")
     store.set_meta(options=config.base.model_dump(mode="json"),
                    modes=[m.value for m in config.modes], temperatures=config.temperatures,
                    runs=config.runs, prompts=len(config.prompts))

@@ -13,7 +13,9 @@ from datetime import UTC, datetime
 from pathlib import Path
 from typing import Any
 
+from arise.errors import AriseError
 from arise.evaluate.records import AttemptRecord, RunRecord
+from arise.generate.run import AttemptKind
 
 SCHEMA = """
 CREATE TABLE IF NOT EXISTS meta (key TEXT PRIMARY KEY, value TEXT NOT NULL);
@@ -38,7 +40,7 @@ CREATE TABLE IF NOT EXISTS attempts (
 """
 
 
-class BenchStoreError(RuntimeError):
+class BenchStoreError(AriseError):
     """The database cannot be opened or is not an arise benchmark."""
 
 
@@ -113,5 +115,5 @@ class BenchStore:
         rows = self._db.execute(
             "SELECT idx, kind, ok, stage, error_type, message, section, check_seconds, "
             "llm_calls, tokens FROM attempts ORDER BY run_id, idx")
-        return [AttemptRecord(i, k, bool(o), s, e, m, sec, c, n, t)
+        return [AttemptRecord(i, AttemptKind(k), bool(o), s, e, m, sec, c, n, t)
                 for i, k, o, s, e, m, sec, c, n, t in rows]

@@ -92,14 +92,10 @@ def search_command(
     kb_dirs: KbDirs = None,
 ) -> None:
     """Top-k entries per component for a description (BM25 unless a model is present)."""
-    from arise.kb.retrieval import EmbeddingUnavailable, make_retriever
+    from arise.kb.retrieval import make_retriever
 
     kb = _load(kb_dirs)
-    try:
-        retriever = make_retriever(kb, backend, model)
-    except (EmbeddingUnavailable, ValueError) as error:
-        errors.print(f"[red]{error}[/red]")
-        raise typer.Exit(2) from None
+    retriever = make_retriever(kb, backend, model)  # RetrieverError: one line, exit 2
     components = [component] if component is not None else list(Component)
     table = Table(title=f"backend: {retriever.name}")
     for column in ("component", "rank"):

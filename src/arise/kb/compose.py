@@ -12,6 +12,7 @@ from __future__ import annotations
 import re
 from collections.abc import Iterable, Mapping, Sequence
 
+from arise.errors import AriseError
 from arise.kb.schema import (
     ADVERSARY_CLASSES,
     COMPONENT_ORDER,
@@ -27,7 +28,7 @@ ENTRY_MARK = re.compile(r"^# kb: (\S+)\s*$")
 DEFAULT_TERMINATE_SECONDS = 20.0
 
 
-class ComposeError(ValueError):
+class ComposeError(AriseError):
     """The entries do not fit together; every problem names the entry at fault."""
 
     def __init__(self, problems: Sequence[str]):

@@ -17,13 +17,14 @@ from typing import Any
 import yaml
 from pydantic import ValidationError
 
+from arise.errors import AriseError
 from arise.kb.schema import COMPONENT_ORDER, Component, Entry
 
 ENV_VAR = "ARISE_KB_DIR"
 SUFFIXES = (".yaml", ".yml")
 
 
-class KBError(Exception):
+class KBError(AriseError):
     """A knowledge-base file that cannot be used, with where exactly it went wrong."""
 
     def __init__(self, file: str, message: str, entry: str | None = None,

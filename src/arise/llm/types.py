@@ -14,6 +14,8 @@ from typing import Any, Literal
 
 from pydantic import BaseModel
 
+from arise.errors import AriseError
+
 Role = Literal["system", "user", "assistant"]
 
 #: How a backend can be made to emit JSON that matches a schema.
@@ -224,11 +226,14 @@ class Completion:
 # --------------------------------------------------------------------------- errors
 
 
-class LLMError(Exception):
+class LLMError(AriseError):
     """Base of every error this package raises on purpose.
 
-    ``str(error)`` is one line a user can act on; the CLI prints exactly that.
+    ``str(error)`` is one line a user can act on; the CLI prints exactly that. Exit code 1:
+    the model failed or could not be reached (the input itself may be fine).
     """
+
+    exit_code = 1
 
 
 class MissingCredentials(LLMError):

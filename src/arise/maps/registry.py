@@ -18,6 +18,7 @@ from importlib import resources
 from pathlib import Path
 from typing import Any
 
+from arise.errors import AriseError
 from arise.paths import cache_dir
 from arise.validate.types import MapChoice
 
@@ -131,7 +132,7 @@ class MapRegistry:
         )
 
 
-class MapError(Exception):
+class MapError(AriseError):
     """A map cannot be found or read; the message says what to do."""
 
 

@@ -10,7 +10,7 @@ from __future__ import annotations
 import os
 
 from arise.kb.loader import KnowledgeBase
-from arise.kb.retrieval.base import Hit, Retriever
+from arise.kb.retrieval.base import Hit, Retriever, RetrieverError
 from arise.kb.retrieval.bm25 import BM25Retriever
 from arise.kb.retrieval.embedding import EmbeddingRetriever, EmbeddingUnavailable, find_model
 from arise.kb.retrieval.hybrid import HybridRetriever
@@ -28,7 +28,7 @@ def make_retriever(kb: KnowledgeBase, backend: str = "auto",
     or found and loads, else BM25.
     """
     if backend not in BACKENDS:
-        raise ValueError(f"unknown retrieval backend {backend!r}; choose from {BACKENDS}")
+        raise RetrieverError(f"unknown retrieval backend {backend!r}; choose from {BACKENDS}")
     if backend == "bm25":
         return BM25Retriever(kb)
     if backend == "embedding":
@@ -46,4 +46,4 @@ def make_retriever(kb: KnowledgeBase, backend: str = "auto",
 
 
 __all__ = ["BACKENDS", "HYBRID_LEXICAL_WEIGHT", "BM25Retriever", "EmbeddingRetriever", "EmbeddingUnavailable", "Hit",
-           "HybridRetriever", "Retriever", "find_model", "make_retriever"]
+           "HybridRetriever", "Retriever", "RetrieverError", "find_model", "make_retriever"]

@@ -5,8 +5,13 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Protocol
 
+from arise.errors import AriseError
 from arise.kb.loader import KnowledgeBase
 from arise.kb.schema import Component, Entry
+
+
+class RetrieverError(AriseError):
+    """A retrieval backend that cannot be used (unknown, or its model is missing)."""
 
 
 @dataclass(frozen=True)

@@ -19,7 +19,7 @@ from typing import Any
 import numpy as np
 
 from arise.kb.loader import KnowledgeBase
-from arise.kb.retrieval.base import Hit, by_component
+from arise.kb.retrieval.base import Hit, RetrieverError, by_component
 from arise.kb.schema import Component, Entry
 
 MODEL_ENV = "ARISE_KB_EMBED_MODEL"
@@ -28,7 +28,7 @@ NEEDED_FILES = ("config.json", "model.safetensors", "tokenizer.json")
 MAX_TOKENS = 256
 
 
-class EmbeddingUnavailable(RuntimeError):
+class EmbeddingUnavailable(RetrieverError):
     """No usable model folder or the `embed` extra is not installed; says which."""
 
 

@@ -1,0 +1,58 @@
+"""The command line handles errors once: one line for an AriseError, a crash report for a bug."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+import typer
+from typer.testing import CliRunner
+
+from arise.cli import CRASH_EXIT, AriseGroup, app
+from arise.errors import AriseError
+from arise.llm.types import ProviderUnavailable
+
+runner = CliRunner()
+demo = typer.Typer(cls=AriseGroup, add_completion=False, pretty_exceptions_enable=False)
+
+
+@demo.command()
+def mistake() -> None:
+    raise AriseError("the [file] x.scenic does not exist")
+
+
+@demo.command()
+def model() -> None:
+    raise ProviderUnavailable("llamacpp: cannot reach the server")
+
+
+@demo.command()
+def bug() -> None:
+    raise ZeroDivisionError("division by zero")
+
+
+def test_an_arise_error_is_one_line_with_its_exit_code() -> None:
+    result = runner.invoke(demo, ["mistake"])
+    assert result.exit_code == 2
+    assert result.output.strip() == "error: the [file] x.scenic does not exist"
+    result = runner.invoke(demo, ["model"])
+    assert result.exit_code == 1 and "cannot reach" in result.output
+
+
+def test_a_bug_writes_a_crash_report_instead_of_a_traceback(
+        tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.setenv("ARISE_CACHE_DIR", str(tmp_path))
+    result = runner.invoke(demo, ["bug"])
+    assert result.exit_code == CRASH_EXIT
+    assert "Traceback" not in result.output and "ZeroDivisionError" in result.output
+    [report] = (tmp_path / "crashes").glob("crash-*.txt")
+    assert str(report) in result.output.replace("\n", "")
+    text = report.read_text()
+    assert "Traceback" in text and "ZeroDivisionError: division by zero" in text
+
+
+def test_usage_errors_stay_click_s(tmp_path: Path) -> None:
+    result = runner.invoke(app, ["generate", "--no-such-option"])
+    assert result.exit_code == 2 and "No such option" in result.output
+    missing = runner.invoke(app, ["kb", "search", "a car brakes", "--backend", "tfidf"])
+    assert missing.exit_code == 2 and "unknown retrieval backend" in missing.output
