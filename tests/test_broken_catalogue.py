@@ -40,7 +40,7 @@ CATALOGUE: dict[str, tuple[Stage, str, tuple[int, ...], str, str]] = {
     "memory_bomb": (Stage.COMPILE, "MemoryError", (18,), "GEOMETRY", "memory limit"),
     "forbidden_import": (Stage.GATE, "ForbiddenConstruct", (6,), "HEADER", "'os'"),
     "file_write": (Stage.GATE, "ForbiddenConstruct", (18,), "GEOMETRY", "open"),
-    "dunder_escape": (Stage.GATE, "ForbiddenConstruct", (18,), "GEOMETRY", "dunder"),
+    "dunder_escape": (Stage.GATE, "ForbiddenConstruct", (18,), "GEOMETRY", "starts with '_'"),
 }
 
 OPTIONS = CheckOptions(seed=3, timeout=12, spawn_attempts=4, sample_iterations=300)
