@@ -1,90 +1,58 @@
-"""`arise check` as a user runs it: exit codes, JSON, the picture, clear errors."""
+"""The command line handles errors once: one line for an AriseError, a crash report for a bug."""
 
 from __future__ import annotations
 
-import json
-import socket
-import subprocess
-import sys
-import time
 from pathlib import Path
 
 import pytest
+import typer
+from typer.testing import CliRunner
 
-from tests.conftest import DATA, EXAMPLES
+from arise.cli import CRASH_EXIT, AriseGroup, app
+from arise.errors import AriseError
+from arise.llm.types import ProviderUnavailable
 
-
-def arise(*args: str, timeout: float = 300) -> subprocess.CompletedProcess[str]:
-    return subprocess.run([sys.executable, "-m", "arise", *args], capture_output=True,
-                          text=True, timeout=timeout)
-
-
-@pytest.mark.slow
-def test_check_example_writes_json_and_png(tmp_path: Path) -> None:
-    png = tmp_path / "scene.png"
-    run = arise("check", str(EXAMPLES / "pedestrian_crossing.scenic"), "--json", "--seed", "1",
-                "--png", str(png))
-    assert run.returncode == 0, run.stderr
-    result = json.loads(run.stdout)
-    assert result["ok"] is True
-    assert result["map"]["name"] == "arise_straight"
-    assert result["simulation"]["steps"] > 0
-    assert {a["kind"] for a in result["simulation"]["agents"]} == {"Car", "Pedestrian"}
-    assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
-    assert list(tmp_path.glob("*.png")) == [png], "no temporary file may be left behind"
+runner = CliRunner()
+demo = typer.Typer(cls=AriseGroup, add_completion=False, pretty_exceptions_enable=False)
 
 
-@pytest.mark.slow
-def test_failed_check_exits_1_with_a_readable_diagnostic() -> None:
-    run = arise("check", str(DATA / "broken" / "scenic2_no_new.scenic"))
-    assert run.returncode == 1
-    assert "Traceback" not in run.stdout + run.stderr
-    assert "parse" in run.stdout and "line 20" in run.stdout and "new" in run.stdout
+@demo.command()
+def mistake() -> None:
+    raise AriseError("the [file] x.scenic does not exist")
 
 
-def test_missing_file_is_a_clear_error(tmp_path: Path) -> None:
-    run = arise("check", str(tmp_path / "nope.scenic"), "--json")
-    assert run.returncode == 1
-    assert json.loads(run.stdout)["diagnostic"]["error_type"] == "FileNotFoundError"
-    assert "Traceback" not in run.stderr
+@demo.command()
+def model() -> None:
+    raise ProviderUnavailable("llamacpp: cannot reach the server")
 
 
-def test_empty_and_garbage_scripts(tmp_path: Path) -> None:
-    empty = tmp_path / "empty.scenic"
-    empty.write_text("   \n")
-    run = arise("check", str(empty), "--json")
-    assert json.loads(run.stdout)["diagnostic"]["error_type"] == "EmptyScript"
-    garbage = tmp_path / "garbage.scenic"
-    garbage.write_bytes(b"\xff\xfe\x00 not text")
-    run = arise("check", str(garbage), "--json")
-    assert run.returncode == 1 and "UTF-8" in json.loads(run.stdout)["diagnostic"]["message"]
+@demo.command()
+def bug() -> None:
+    raise ZeroDivisionError("division by zero")
 
 
-def test_bad_option_and_bad_map_dir_exit_2(tmp_path: Path) -> None:
-    script = str(EXAMPLES / "pedestrian_crossing.scenic")
-    assert arise("check", script, "--simulator", "gazebo").returncode == 2
-    run = arise("check", script, "--map-dir", str(tmp_path / "missing"))
-    assert run.returncode == 2 and "does not exist" in run.stderr
+def test_an_arise_error_is_one_line_with_its_exit_code() -> None:
+    result = runner.invoke(demo, ["mistake"])
+    assert result.exit_code == 2
+    assert result.output.strip() == "error: the [file] x.scenic does not exist"
+    result = runner.invoke(demo, ["model"])
+    assert result.exit_code == 1 and "cannot reach" in result.output
 
 
-def _free_port() -> int:
-    with socket.socket() as probe:
-        probe.bind(("127.0.0.1", 0))
-        return int(probe.getsockname()[1])
+def test_a_bug_writes_a_crash_report_instead_of_a_traceback(
+        tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.setenv("ARISE_CACHE_DIR", str(tmp_path))
+    result = runner.invoke(demo, ["bug"])
+    assert result.exit_code == CRASH_EXIT
+    assert "Traceback" not in result.output and "ZeroDivisionError" in result.output
+    [report] = (tmp_path / "crashes").glob("crash-*.txt")
+    assert str(report) in result.output.replace("\n", "")
+    text = report.read_text()
+    assert "Traceback" in text and "ZeroDivisionError: division by zero" in text
 
 
-def test_unreachable_carla_fails_within_seconds() -> None:
-    started = time.monotonic()
-    run = arise("check", str(EXAMPLES / "pedestrian_crossing.scenic"), "--simulator", "carla",
-                "--carla-port", str(_free_port()), "--json")
-    assert time.monotonic() - started < 15
-    diagnostic = json.loads(run.stdout)["diagnostic"]
-    assert diagnostic["error_type"] == "CarlaUnreachable"
-    assert "--carla-host" in diagnostic["message"]
-
-
-def test_maps_list_shows_our_maps() -> None:
-    run = arise("maps", "list")
-    assert run.returncode == 0
-    for name in ("arise_straight", "arise_intersection4", "arise_tjunction", "arise_highway"):
-        assert name in run.stdout
+def test_usage_errors_stay_click_s(tmp_path: Path) -> None:
+    result = runner.invoke(app, ["generate", "--no-such-option"])
+    assert result.exit_code == 2 and "No such option" in result.output
+    missing = runner.invoke(app, ["kb", "search", "a car brakes", "--backend", "tfidf"])
+    assert missing.exit_code == 2 and "unknown retrieval backend" in missing.output

@@ -24,6 +24,7 @@ from rich.markup import escape
 from typer.core import TyperGroup
 
 from arise import __version__
+from arise.doctor import DOCTOR_HELP, doctor_command
 from arise.errors import AriseError
 from arise.evaluate.cli import BENCH_HELP, REPORT_HELP, bench_command, report_command
 from arise.evaluate.judge_cli import JUDGE_HELP, judge_command
@@ -88,6 +89,7 @@ app.command("bench", help=BENCH_HELP)(bench_command)
 app.command("report", help=REPORT_HELP)(report_command)
 app.command("judge", help=JUDGE_HELP)(judge_command)
 app.command("blueprints")(blueprints_command)
+app.command("doctor", help=DOCTOR_HELP)(doctor_command)
 app.add_typer(maps_app, name="maps")
 app.add_typer(llm_app, name="llm")
 app.add_typer(kb_app, name="kb")
