@@ -33,12 +33,10 @@ from arise.evaluate.judge import (
 from arise.llm.base import BaseProvider
 from arise.llm.registry import get_provider
 from arise.llm.types import (
-    Completion,
     ProviderUnavailable,
-    Request,
     StructuredOutputFailed,
-    Usage,
 )
+from tests.fakes import ScriptedProvider as Scripted
 from tests.judge_cases import CASES, CHILD_DIR, PEDESTRIAN
 
 SCORES = dict(zip(CRITERIA, (10, 8, 10, 10, 7, 10, 5), strict=True))  # sum 60
@@ -165,23 +163,6 @@ def test_inputs_that_cannot_be_judged() -> None:
 
 def answer(scores: dict[str, int], reason: str = "matches") -> str:
     return json.dumps({name: {"reason": reason, "score": scores[name]} for name in CRITERIA})
-
-
-class Scripted(BaseProvider):
-    """Replies from a queue, and remembers every request."""
-
-    name = "scripted"
-    model = "scripted-1"
-
-    def __init__(self, replies: list[str]) -> None:
-        self.replies = list(replies)
-        self.requests: list[Request] = []
-
-    def send(self, request: Request) -> Completion:
-        self.requests.append(request)
-        return Completion(text=self.replies.pop(0), usage=Usage(calls=1, prompt_tokens=100,
-                                                                  completion_tokens=50),
-                          model=self.model, latency=0.5, provider=self.name)
 
 
 def test_judge_script_turns_the_answer_into_a_judgement() -> None:
