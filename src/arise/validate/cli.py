@@ -29,6 +29,8 @@ CHECK_HELP = """Prove that Scenic 3 scripts execute: static gate, compile, sampl
 
 Scripts written for `model scenic.simulators.carla.model` run unchanged on arise's
 offline CARLA-compatible world model; `--simulator carla` uses a real CARLA server.
+Every script runs in a confined worker (Landlock, seccomp, rlimits); the output says
+which confinement was active.
 
 Examples:
 
@@ -39,6 +41,8 @@ Examples:
   arise check out/*.scenic --json > results.json
 
   arise check my.scenic --map-dir ../shared/maps/CARLA
+
+  arise check downloaded.scenic --require-sandbox
 """
 
 
