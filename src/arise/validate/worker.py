@@ -52,11 +52,7 @@ from arise.validate.types import (
 
 Emit = Callable[[dict[str, Any]], None]
 OFFLINE_MODEL = "arise.validate.worldmodel.model"
-STUCK_BEHAVIOR_SECONDS = 3  # a behavior step this long without an action is a bug
-SOFT_TIMEOUT_GRACE = 2.0
-# Parsed maps kept per worker, budgeted by OpenDRIVE file size: a CARLA town (1-3.5 MB of
-# XML) costs ~30-100 MB parsed; our own maps (< 40 kB) almost nothing.
-NETWORK_CACHE_BYTES = 4_000_000  # seconds between our own interrupt and the parent's kill
+SOFT_TIMEOUT_GRACE = 2.0  # seconds between our own interrupt and the parent's kill
 
 
 class CheckTimeout(Exception):
@@ -70,102 +66,23 @@ class _Failed(Exception):
 
 
 # --- once per worker --------------------------------------------------------------------
-_NETWORK_CACHE: dict[tuple[Any, ...], Any] = {}
 _VOCABULARY: list[str] = []
 
 
 def _warm_up() -> None:
-    """Import Scenic once and memoise parsed maps, so each check pays only for itself."""
-    import scenic  # noqa: F401
-    import scenic.core.simulators as simulators
-    from scenic.core.dynamics import StuckBehaviorWarning
-    from scenic.domains.driving.roads import Network
+    """Import Scenic once and patch it (`scenic_patches`), so each check pays only for
+    itself; load what later checks read while files may still be written."""
+    from arise.validate import scenic_patches
 
-    original = Network.fromFile.__func__
-
-    def cached_from_file(cls: Any, path: Any, useCache: bool = True,
-                         writeCache: bool = True, **kwargs: Any) -> Any:
-        resolved = os.path.realpath(str(path))
-        try:
-            stamp = os.stat(resolved).st_mtime_ns
-        except OSError:
-            stamp = None
-        key = (resolved, stamp, repr(sorted(kwargs.items())))
-        entry = _NETWORK_CACHE.pop(key, None)
-        if entry is None:
-            size = os.path.getsize(resolved) if stamp is not None else 0
-            # A confined worker cannot write beside the map, and a .snet written by a
-            # process that ran a script must not be trusted: the parent prepares it.
-            entry = (original(cls, path, useCache=useCache, writeCache=False, **kwargs), size)
-        _NETWORK_CACHE[key] = entry  # most recently used last
-        while len(_NETWORK_CACHE) > 1 and sum(
-                size for _, size in _NETWORK_CACHE.values()) > NETWORK_CACHE_BYTES:
-            del _NETWORK_CACHE[next(iter(_NETWORK_CACHE))]
-        return entry[0]
-
-    Network.fromFile = classmethod(cached_from_file)
-
-    def trace_state(self: Any) -> tuple[tuple[float, float, float, float], ...]:
-        return tuple(
-            (float(o.position.x), float(o.position.y), float(o.heading), float(o.speed or 0.0))
-            for o in self.objects
-        )
-
-    simulators.Simulation.currentState = trace_state
-    _memoise_library_parsing()
-    warnings.simplefilter("error", StuckBehaviorWarning)
-    import scenic.core.dynamics as dynamics
-
-    dynamics.stuckBehaviorWarningTimeout = STUCK_BEHAVIOR_SECONDS
+    scenic_patches.install()
     _VOCABULARY.extend(_build_vocabulary())
-    # Load what later checks read, while files may still be written: matplotlib's font
-    # list (built and cached on first use) and the offline world model's Python parts.
+    # matplotlib's font list (built and cached on first use) and the world model's Python.
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.font_manager  # noqa: F401
 
     import arise.validate.worldmodel.simulator  # noqa: F401
-
-
-def _memoise_library_parsing() -> None:
-    """Parse and translate Scenic's and our world-model modules once per worker.
-
-    Parsing the world model's Scenic source dominates compile time, and the translated
-    Python tree does not depend on params, so the first translation serves every later
-    compile (the module is still executed each time). User scripts are parsed afresh.
-    """
-    import scenic.syntax.translator as translator
-
-    import arise
-
-    parse = translator.parse_string
-    translate = translator.compileScenicAST
-    library_roots = (str(Path(translator.__file__).parents[1]), str(Path(arise.__file__).parent))
-    translated: dict[tuple[str, str], Any] = {}
-
-    class _Known:
-        def __init__(self, key: tuple[str, str]):
-            self.key = key
-
-    def parse_string(source: str, mode: str, *args: Any, filename: str = "<unknown>",
-                     **kwargs: Any) -> Any:
-        if str(filename).startswith(library_roots) and mode == "exec":
-            key = (str(filename), source)
-            if key in translated:
-                return _Known(key)
-            tree = parse(source, mode, *args, filename=filename, **kwargs)
-            translated[key] = translate(tree, filename=filename)
-            return _Known(key)
-        return parse(source, mode, *args, filename=filename, **kwargs)
-
-    def compile_scenic_ast(tree: Any, *args: Any, **kwargs: Any) -> Any:
-        if isinstance(tree, _Known):
-            return translated[tree.key]
-        return translate(tree, *args, **kwargs)
-
-    translator.parse_string = parse_string
-    translator.compileScenicAST = compile_scenic_ast
 
 
 def _build_vocabulary() -> list[str]:
