@@ -1,5 +1,7 @@
 """Validator speed and memory: wall time per check (compile + sample + 300 simulated steps)
-for a fresh worker process and for the warm pool, and peak worker RSS.
+for a fresh worker process and for the warm pool, and peak worker RSS; and what the
+OS-level confinement costs: the same checks on a confined and an unconfined warm pool,
+interleaved script by script so both see the same load.
 
 Run:  .venv/bin/python benchmarks/validate.py [--rounds 2] [--map-dir DIR]
 Prints a Markdown table; copy it into docs/benchmarks.md with the machine and date.
@@ -21,6 +23,7 @@ from pathlib import Path
 import psutil
 
 from arise.validate import CheckOptions, WorkerPool, check
+from arise.validate.pool import Worker
 
 REPO = Path(__file__).resolve().parents[1]
 SCRIPTS = sorted((REPO / "examples" / "categories").glob("*.scenic")) + [
@@ -87,18 +90,31 @@ def main() -> None:
                 fresh.append(time.perf_counter() - started)
                 if not result.ok:
                     failures.append(f"{script.name}: {result.summary()}")
-        with PeakRss() as warm_rss, WorkerPool(size=1) as pool:
-            pool.warm()
-            check(scripts[0], options, pool=pool)  # first map parse is not a steady-state cost
+        unconfined: list[float] = []
+        # Worker start (Python, Scenic, world model, and confinement or not), alternated.
+        starts: dict[bool, list[float]] = {True: [], False: []}
+        for _ in range(3):
+            for confine in (True, False):
+                started = time.perf_counter()
+                Worker(options.memory_mb, (), confine).kill()
+                starts[confine].append(time.perf_counter() - started)
+        with PeakRss() as warm_rss, WorkerPool(size=1) as pool, \
+                WorkerPool(size=1, confine=False) as open_pool:
+            for each in (pool, open_pool):
+                each.warm()
+                check(scripts[0], options, pool=each)  # first map parse: not steady state
             for _ in range(args.rounds):
                 for script in scripts:
-                    started = time.perf_counter()
-                    result = check(script, options, pool=pool)
-                    warm.append(time.perf_counter() - started)
-                    if result.simulation is not None:
-                        steps.append(result.simulation.steps)
-                    elif not result.ok:
-                        failures.append(f"{script.name}: {result.summary()}")
+                    for each, times in ((pool, warm), (open_pool, unconfined)):
+                        started = time.perf_counter()
+                        result = check(script, options, pool=each)
+                        times.append(time.perf_counter() - started)
+                        if each is pool and result.simulation is not None:
+                            steps.append(result.simulation.steps)
+                        elif not result.ok:
+                            failures.append(f"{script.name}: {result.summary()}")
+                        if each is pool and not (result.sandbox and result.sandbox.full):
+                            failures.append(f"{script.name}: confinement incomplete")
 
     load = os.getloadavg()[0]
     print(f"machine: {platform.machine()}, {psutil.cpu_count()} cores, "
@@ -107,12 +123,18 @@ def main() -> None:
           f"median steps simulated: {statistics.median(steps) if steps else 0:g}\n")
     print("| mode | checks | median s | p90 s | max s | peak worker RSS MB |")
     print("|---|---|---|---|---|---|")
-    for name, times, rss in (("fresh process", fresh, fresh_rss.peak),
-                             ("warm pool", warm, warm_rss.peak)):
+    for name, times, rss in (("fresh process (confined)", fresh, fresh_rss.peak),
+                             ("warm pool (confined)", warm, warm_rss.peak),
+                             ("warm pool, unconfined (benchmark only)", unconfined,
+                              warm_rss.peak)):
         ordered = sorted(times)
         p90 = ordered[int(0.9 * (len(ordered) - 1))] if ordered else 0
         print(f"| {name} | {len(times)} | {statistics.median(times):.2f} | {p90:.2f} | "
               f"{max(times):.2f} | {rss / 2**20:.0f} |")
+    ratio = statistics.median(warm) / statistics.median(unconfined)
+    print(f"\nconfined / unconfined warm median: {ratio:.3f}; worker start (median of 3) "
+          f"{statistics.median(starts[True]):.2f} s confined vs "
+          f"{statistics.median(starts[False]):.2f} s unconfined")
     if failures:
         print("\nfailures:\n" + "\n".join(sorted(set(failures))))
 
