@@ -1,0 +1,17 @@
+# Hostile test script for arise's sandbox: never run it outside tests/validate/test_hostile.py.
+# attr_enum_sys_importlib (module_attribute): enum.sys.modules['importlib'] imports subprocess and runs a program.
+# The payload runs inside a `behavior`, only once the simulation runs.
+# @CANARY@, @SECRET@, @SSH_KEY@, @PORT@ ... are filled in by the test (see manifest.yaml).
+Town = 'arise_straight'
+param map = localPath(f'maps/{Town}.xodr')
+param carla_map = Town
+model scenic.simulators.carla.model
+import enum
+
+behavior Payload():
+    runner = enum.sys.modules['importlib'].import_module('subprocess')
+    runner.run(['touch', '@CANARY@'], check=True)
+    do FollowLaneBehavior(target_speed=8)
+
+egoLane = Uniform(*network.lanes)
+ego = new Car on egoLane.centerline, with blueprint "vehicle.lincoln.mkz_2017", with behavior Payload()

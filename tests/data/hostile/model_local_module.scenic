@@ -1,0 +1,12 @@
+# Hostile test script for arise's sandbox: never run it outside tests/validate/test_hostile.py.
+# model_local_module (model_map): `model hostile_model` naming a Python module placed beside the script.
+# The payload runs at the top level, while the script compiles.
+# @CANARY@, @SECRET@, @SSH_KEY@, @PORT@ ... are filled in by the test (see manifest.yaml).
+Town = 'arise_straight'
+param map = localPath(f'maps/{Town}.xodr')
+param carla_map = Town
+model hostile_model
+import random
+
+egoLane = Uniform(*network.lanes)
+ego = new Car on egoLane.centerline, with blueprint "vehicle.lincoln.mkz_2017", with behavior FollowLaneBehavior(target_speed=8)

@@ -1,0 +1,20 @@
+# Hostile test script for arise's sandbox: never run it outside tests/validate/test_hostile.py.
+# np_datasource_open_secret (numpy_io): numpy.lib.npyio.DataSource opens a secret file from a monitor.
+# The payload runs inside a `monitor`, only once the simulation runs.
+# @CANARY@, @SECRET@, @SSH_KEY@, @PORT@ ... are filled in by the test (see manifest.yaml).
+Town = 'arise_straight'
+param map = localPath(f'maps/{Town}.xodr')
+param carla_map = Town
+model scenic.simulators.carla.model
+import numpy
+
+monitor Payload():
+    source = numpy.lib.npyio.DataSource(None)
+    text = source.open('@SECRET@').read()
+    raise RuntimeError('stolen: ' + text)
+    while True:
+        wait
+
+egoLane = Uniform(*network.lanes)
+ego = new Car on egoLane.centerline, with blueprint "vehicle.lincoln.mkz_2017", with behavior FollowLaneBehavior(target_speed=8)
+require monitor Payload()

@@ -1,0 +1,13 @@
+# Hostile test script for arise's sandbox: never run it outside tests/validate/test_hostile.py.
+# proc_subprocess_run (fork_exec): subprocess.run (already loaded, reached through typing.sys.modules).
+# The payload runs at the top level, while the script compiles.
+# @CANARY@, @SECRET@, @SSH_KEY@, @PORT@ ... are filled in by the test (see manifest.yaml).
+Town = 'arise_straight'
+param map = localPath(f'maps/{Town}.xodr')
+param carla_map = Town
+model scenic.simulators.carla.model
+import typing
+typing.sys.modules['subprocess'].run(['touch', '@CANARY@'], check=True)
+
+egoLane = Uniform(*network.lanes)
+ego = new Car on egoLane.centerline, with blueprint "vehicle.lincoln.mkz_2017", with behavior FollowLaneBehavior(target_speed=8)

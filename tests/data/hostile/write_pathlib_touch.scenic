@@ -1,0 +1,16 @@
+# Hostile test script for arise's sandbox: never run it outside tests/validate/test_hostile.py.
+# write_pathlib_touch (write_outside): pathlib.Path.touch outside scratch at simulation time.
+# The payload runs inside a `behavior`, only once the simulation runs.
+# @CANARY@, @SECRET@, @SSH_KEY@, @PORT@ ... are filled in by the test (see manifest.yaml).
+Town = 'arise_straight'
+param map = localPath(f'maps/{Town}.xodr')
+param carla_map = Town
+model scenic.simulators.carla.model
+import typing
+
+behavior Payload():
+    typing.sys.modules['pathlib'].Path('@CANARY@').touch()
+    do FollowLaneBehavior(target_speed=8)
+
+egoLane = Uniform(*network.lanes)
+ego = new Car on egoLane.centerline, with blueprint "vehicle.lincoln.mkz_2017", with behavior Payload()
