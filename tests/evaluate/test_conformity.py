@@ -7,7 +7,7 @@ from pathlib import Path
 import pytest
 
 from arise.evaluate.criticality import criticality
-from arise.generate.conformity import check_conformity
+from arise.generate.conformity import check_conformity, semantic_gate
 from arise.generate.options import GenerateOptions
 from arise.generate.pipeline import Generator
 from arise.generate.spec import ScenarioSpec
@@ -70,9 +70,9 @@ def test_criticality_reads_the_adversary_pair(example_run: CheckResult) -> None:
 def test_semantic_gate_fails_a_running_script_that_says_something_else(
         example_run: CheckResult, validator_pool) -> None:
     with Generator(GenerateOptions(semantic_gate=True), pool=validator_pool) as generator:
-        passed = generator._semantic_gate(example_run, _spec())
-        failed = generator._semantic_gate(example_run, _spec(adversary_type="truck",
-                                                              weather="ClearNight"))
+        passed = semantic_gate(example_run, generator.conformity_of(_spec(), example_run))
+        failed = semantic_gate(example_run, generator.conformity_of(
+            _spec(adversary_type="truck", weather="ClearNight"), example_run))
     assert passed.ok
     assert not failed.ok and failed.diagnostic is not None
     assert failed.diagnostic.stage is Stage.SEMANTIC

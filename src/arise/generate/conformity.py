@@ -16,7 +16,7 @@ import math
 from dataclasses import dataclass, field
 from typing import Any
 
-from arise.generate.spec import EgoManeuver, RelativePosition, RoadType, ScenarioSpec
+from arise.generate.spec import ScenarioSpec
 from arise.validate.types import (
     AgentTrace,
     CheckResult,
@@ -25,6 +25,7 @@ from arise.validate.types import (
     Stage,
     TracePoint,
 )
+from arise.vocabulary import EgoManeuver, RelativePosition, RoadType
 
 LANE_HALF = 1.8  # |lateral offset| below this is "in the ego's lane"
 NEXT_LANE = 5.6  # up to this is the adjacent lane

@@ -6,10 +6,11 @@ import json
 import re
 from dataclasses import dataclass, field
 
-from arise.generate.spec import EgoManeuver, ScenarioSpec
+from arise.generate.spec import ScenarioSpec
 from arise.llm.base import BaseProvider
 from arise.llm.types import Message
 from arise.prompts import load, load_jsonl
+from arise.vocabulary import EgoManeuver
 
 DRIVING_WORDS = re.compile(
     r"\b(ego|car|cars|vehicle|vehicles|truck|van|bus|motorcycl\w*|motorbike|bike|bicycle|"

@@ -10,15 +10,8 @@ from __future__ import annotations
 import re
 from collections.abc import Sequence
 
-from arise.generate.spec import (
-    AdversaryType,
-    EgoManeuver,
-    RelativePosition,
-    Requirement,
-    RequirementKind,
-    RoadType,
-    ScenarioSpec,
-)
+from arise.generate.spec import Requirement, RequirementKind, ScenarioSpec
+from arise.vocabulary import AdversaryType, EgoManeuver, RelativePosition, RoadType
 
 _ADVERSARY = [
     (AdversaryType.PEDESTRIAN, r"pedestrian|walker|person|child|kid|man|woman|jogger|people"),

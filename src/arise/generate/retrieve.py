@@ -10,10 +10,11 @@ from __future__ import annotations
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 
-from arise.generate.spec import EgoManeuver, RelativePosition, RoadType, ScenarioSpec
+from arise.generate.spec import ScenarioSpec
 from arise.kb.loader import KnowledgeBase
 from arise.kb.retrieval.base import Retriever
 from arise.kb.schema import Component, Entry
+from arise.vocabulary import EgoManeuver, RelativePosition, RoadType
 
 ROAD_FEATURES: dict[RoadType, tuple[str, ...]] = {
     RoadType.STRAIGHT: (),

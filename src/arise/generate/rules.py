@@ -14,13 +14,9 @@ from dataclasses import dataclass, field
 
 from arise.validate.diagnostics import looks_like_scenic2
 from arise.validate.types import Diagnostic, Stage
-from arise.validate.worldmodel.weather import WEATHER_PRESETS
+from arise.vocabulary import ACTOR_CLASSES, POINT_CLASSES, PROP_CLASSES, WEATHER_PRESETS
 
-CLASS_NAMES = ("Car", "Truck", "Van", "Bus", "Motorcycle", "Bicycle", "Pedestrian", "NPCCar",
-               "OrientedPoint", "Point", "Object", "BusStop", "VendingMachine", "Trash", "Cone",
-               "Barrier", "Debris", "Chair", "Advertisement", "Garbage", "Container", "Table",
-               "PlantPot", "Mailbox", "Gnome", "CreasedBox", "Case", "Box", "Bench", "Barrel",
-               "ATM", "Kiosk", "IronPlate", "TrafficWarning")
+CLASS_NAMES = ACTOR_CLASSES + POINT_CLASSES + PROP_CLASSES
 
 
 @dataclass

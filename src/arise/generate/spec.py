@@ -1,7 +1,7 @@
 """ScenarioSpec: what module A extracts from a description.
 
-Enums carry the decisions a small model must get right (who, where, which way); free text
-carries the details retrieval ranks on. Both are validated, so a nonsense answer is caught
+Enums carry the decisions a small model must get right (who, where, which way); they come
+from `arise.vocabulary`. Free text carries the details retrieval ranks on. Both are validated, so a nonsense answer is caught
 at the boundary instead of deep in the assembler.
 """
 
@@ -11,46 +11,17 @@ from enum import StrEnum
 
 from pydantic import BaseModel, Field, field_validator
 
-from arise.validate.worldmodel.weather import WEATHER_PRESETS
+from arise.vocabulary import (
+    DEFAULT_WEATHER,
+    WEATHER_PRESETS,
+    AdversaryType,
+    EgoManeuver,
+    RelativePosition,
+    RoadType,
+)
 
-
-class AdversaryType(StrEnum):
-    CAR = "car"
-    TRUCK = "truck"
-    MOTORCYCLE = "motorcycle"
-    BICYCLE = "bicycle"
-    PEDESTRIAN = "pedestrian"
-
-    @property
-    def scenic_class(self) -> str:
-        return {"car": "Car", "truck": "Truck", "motorcycle": "Motorcycle",
-                "bicycle": "Bicycle", "pedestrian": "Pedestrian"}[self.value]
-
-
-class RoadType(StrEnum):
-    STRAIGHT = "straight_road"
-    INTERSECTION = "intersection"
-    T_JUNCTION = "t_junction"
-    HIGHWAY = "highway"
-
-
-class EgoManeuver(StrEnum):
-    GO_STRAIGHT = "go_straight"
-    TURN_LEFT = "turn_left"
-    TURN_RIGHT = "turn_right"
-    CHANGE_LANE = "change_lane"
-
-
-class RelativePosition(StrEnum):
-    AHEAD_SAME_LANE = "ahead_same_lane"
-    BEHIND_SAME_LANE = "behind_same_lane"
-    ADJACENT_LANE_LEFT = "adjacent_lane_left"
-    ADJACENT_LANE_RIGHT = "adjacent_lane_right"
-    ONCOMING = "oncoming"
-    ROADSIDE_RIGHT = "roadside_right"
-    ROADSIDE_LEFT = "roadside_left"
-    CROSSING_FROM_LEFT = "crossing_road_from_left"
-    CROSSING_FROM_RIGHT = "crossing_road_from_right"
+__all__ = ["AdversaryType", "EgoManeuver", "RelativePosition", "Requirement",
+           "RequirementKind", "RoadType", "ScenarioSpec"]
 
 
 class RequirementKind(StrEnum):
@@ -80,7 +51,7 @@ class ScenarioSpec(BaseModel):
     spawn: str = Field(description="where the adversary starts relative to the ego, in words")
     participants: list[str] = Field(default_factory=list,
                                     description="other road users and objects, one per item")
-    weather: str = Field(default="ClearNoon", description="a CARLA weather preset")
+    weather: str = Field(default=DEFAULT_WEATHER, description="a CARLA weather preset")
     requirements: list[Requirement] = Field(default_factory=list)
 
     @field_validator("weather")
@@ -102,4 +73,4 @@ class ScenarioSpec(BaseModel):
             preset = f"Cloudy{time}"
         else:
             preset = f"Clear{time}"
-        return preset if preset in WEATHER_PRESETS else "ClearNoon"
+        return preset if preset in WEATHER_PRESETS else DEFAULT_WEATHER

@@ -13,14 +13,9 @@ import re
 from collections.abc import Iterable, Mapping, Sequence
 
 from arise.errors import AriseError
-from arise.kb.schema import (
-    ADVERSARY_CLASSES,
-    COMPONENT_ORDER,
-    PLACEHOLDER_PATTERN,
-    Component,
-    Entry,
-)
+from arise.kb.schema import COMPONENT_ORDER, PLACEHOLDER_PATTERN, Component, Entry
 from arise.sections import MarkerKind, parse_marker, write_section
+from arise.vocabulary import ADVERSARY_CLASSES
 
 SINGLE = (Component.BEHAVIOR, Component.GEOMETRY, Component.SPAWN)  # exactly one each
 OPTIONAL_SINGLE = (Component.WEATHER,)  # at most one

@@ -14,14 +14,10 @@ from collections.abc import Iterable
 from dataclasses import dataclass
 
 from arise.kb.schema import PLACEHOLDER_PATTERN, Component, Entry
+from arise.vocabulary import ACTOR_CLASSES, POINT_CLASSES, PROP_CLASSES
 
-OBJECT_CLASSES = (
-    "Car", "NPCCar", "Truck", "Van", "Bus", "Motorcycle", "Bicycle", "Pedestrian", "Object",
-    "Point", "OrientedPoint", "Prop", "Trash", "Cone", "Debris", "VendingMachine", "Chair",
-    "BusStop", "Advertisement", "Garbage", "Container", "Table", "Barrier", "PlantPot",
-    "Mailbox", "Gnome", "CreasedBox", "Case", "Box", "Bench", "Barrel", "ATM", "Kiosk",
-    "IronPlate", "TrafficWarning", r"\{\{ADVERSARY_CLASS\}\}",
-)
+OBJECT_CLASSES = (*ACTOR_CLASSES, *POINT_CLASSES, "Prop", *PROP_CLASSES,
+                  r"\{\{ADVERSARY_CLASS\}\}")
 SPECIFIERS = ("at", "on", "in", "ahead", "behind", "left", "right", "following", "facing",
               "with", "offset", "beyond", "visible", "not", "apparently", "contained")
 # `Car at spot`, `ego = Car`, ... without `new`: Scenic 2 object creation.

@@ -14,7 +14,8 @@ from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass, field
 
 from arise.kb.compose import compose, composition_problems, pick_map
-from arise.kb.schema import ADVERSARY_CLASSES, Component, Entry
+from arise.kb.schema import Component, Entry
+from arise.vocabulary import ADVERSARY_CLASSES
 
 # How many entries of each attachable component one script carries at most. One
 # requirements entry per script: two constraints written separately may exclude each other.

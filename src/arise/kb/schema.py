@@ -11,6 +11,8 @@ from enum import StrEnum
 
 from pydantic import BaseModel, ConfigDict, Field, field_validator
 
+from arise.vocabulary import ADVERSARY_CLASSES, MAP_FEATURES
+
 
 class Component(StrEnum):
     """The six kinds of snippet; their order is the order of the script's sections."""
@@ -30,11 +32,6 @@ class Component(StrEnum):
 
 COMPONENT_ORDER: tuple[Component, ...] = tuple(Component)
 
-ADVERSARY_CLASSES: tuple[str, ...] = ("Car", "Truck", "Motorcycle", "Bicycle", "Pedestrian")
-VEHICLE_CLASSES: tuple[str, ...] = ("Car", "Truck", "Motorcycle", "Bicycle")
-
-MAP_FEATURES: tuple[str, ...] = ("straight", "multilane", "sidewalk", "intersection4",
-                                 "tjunction", "signalized", "highway", "curve")
 
 ID_PATTERN = re.compile(r"^[a-z][a-z0-9_]*(\.[a-z0-9_]+)*$")
 NAME_PATTERN = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")

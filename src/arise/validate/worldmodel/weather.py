@@ -1,24 +1,16 @@
-"""CARLA 0.9.16 weather vocabulary, so a bad weather param fails offline as it would in CARLA."""
+"""CARLA 0.9.16 weather checks, so a bad weather param fails offline as it would in CARLA.
+
+The preset and parameter names themselves live in `arise.vocabulary`.
+"""
 
 from __future__ import annotations
 
 import difflib
 from typing import Any
 
-WEATHER_PRESETS: tuple[str, ...] = (
-    "ClearNoon", "CloudyNoon", "WetNoon", "WetCloudyNoon", "SoftRainNoon", "MidRainyNoon",
-    "HardRainNoon", "ClearSunset", "CloudySunset", "WetSunset", "WetCloudySunset",
-    "SoftRainSunset", "MidRainSunset", "HardRainSunset", "ClearNight", "CloudyNight",
-    "WetNight", "WetCloudyNight", "SoftRainNight", "MidRainyNight", "HardRainNight",
-    "DustStorm", "Default",
-)
+from arise.vocabulary import WEATHER_FIELDS, WEATHER_PRESETS
 
-WEATHER_FIELDS: tuple[str, ...] = (
-    "cloudiness", "precipitation", "precipitation_deposits", "wind_intensity",
-    "sun_azimuth_angle", "sun_altitude_angle", "fog_density", "fog_distance", "fog_falloff",
-    "wetness", "scattering_intensity", "mie_scattering_scale", "rayleigh_scattering_scale",
-    "dust_storm",
-)
+__all__ = ["WEATHER_FIELDS", "WEATHER_PRESETS", "WeatherError", "check_weather"]
 
 
 class WeatherError(ValueError):

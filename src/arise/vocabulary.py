@@ -1,0 +1,96 @@
+"""The domain's words, in one place: who takes part, where they start, what the ego does,
+which roads and weathers exist.
+
+The spec (what extraction fills), the knowledge-base schema (what entries declare), the
+repair rules and the offline world model all import these, so a new adversary class or
+weather preset is added here once. This module imports nothing from arise.
+"""
+
+from __future__ import annotations
+
+from enum import StrEnum
+
+# -- who ------------------------------------------------------------------------------------
+
+
+# No docstrings on these enums: their JSON schema is part of the extraction request, and
+# recorded cassettes (and caches) are keyed on it.
+class AdversaryType(StrEnum):
+    CAR = "car"
+    TRUCK = "truck"
+    MOTORCYCLE = "motorcycle"
+    BICYCLE = "bicycle"
+    PEDESTRIAN = "pedestrian"
+
+    @property
+    def scenic_class(self) -> str:
+        """The CARLA model's class for it (`new Car`, `new Pedestrian`, ...)."""
+        return self.value.capitalize()
+
+
+#: Classes an adversary may have (the scenic_class of each AdversaryType, in order).
+ADVERSARY_CLASSES: tuple[str, ...] = tuple(kind.scenic_class for kind in AdversaryType)
+#: Classes of road users in CARLA's Scenic model (and in our offline world model).
+ACTOR_CLASSES: tuple[str, ...] = ("Car", "NPCCar", "Truck", "Van", "Bus", "Motorcycle",
+                                  "Bicycle", "Pedestrian")
+#: Static objects of CARLA's Scenic model.
+PROP_CLASSES: tuple[str, ...] = (
+    "Trash", "Cone", "Debris", "VendingMachine", "Chair", "BusStop", "Advertisement",
+    "Garbage", "Container", "Table", "Barrier", "PlantPot", "Mailbox", "Gnome", "CreasedBox",
+    "Case", "Box", "Bench", "Barrel", "ATM", "Kiosk", "IronPlate", "TrafficWarning",
+)
+#: Scenic's own classes a script may create.
+POINT_CLASSES: tuple[str, ...] = ("Object", "Point", "OrientedPoint")
+
+# -- where ----------------------------------------------------------------------------------
+
+
+class RoadType(StrEnum):
+    STRAIGHT = "straight_road"
+    INTERSECTION = "intersection"
+    T_JUNCTION = "t_junction"
+    HIGHWAY = "highway"
+
+
+class RelativePosition(StrEnum):  # where the adversary starts, seen from the ego
+    AHEAD_SAME_LANE = "ahead_same_lane"
+    BEHIND_SAME_LANE = "behind_same_lane"
+    ADJACENT_LANE_LEFT = "adjacent_lane_left"
+    ADJACENT_LANE_RIGHT = "adjacent_lane_right"
+    ONCOMING = "oncoming"
+    ROADSIDE_RIGHT = "roadside_right"
+    ROADSIDE_LEFT = "roadside_left"
+    CROSSING_FROM_LEFT = "crossing_road_from_left"
+    CROSSING_FROM_RIGHT = "crossing_road_from_right"
+
+
+#: Features a map may have and a knowledge-base entry may need.
+MAP_FEATURES: tuple[str, ...] = ("straight", "multilane", "sidewalk", "intersection4",
+                                 "tjunction", "signalized", "highway", "curve")
+
+# -- what the ego does ----------------------------------------------------------------------
+
+
+class EgoManeuver(StrEnum):
+    GO_STRAIGHT = "go_straight"
+    TURN_LEFT = "turn_left"
+    TURN_RIGHT = "turn_right"
+    CHANGE_LANE = "change_lane"
+
+
+# -- weather (CARLA 0.9.16) -----------------------------------------------------------------
+
+WEATHER_PRESETS: tuple[str, ...] = (
+    "ClearNoon", "CloudyNoon", "WetNoon", "WetCloudyNoon", "SoftRainNoon", "MidRainyNoon",
+    "HardRainNoon", "ClearSunset", "CloudySunset", "WetSunset", "WetCloudySunset",
+    "SoftRainSunset", "MidRainSunset", "HardRainSunset", "ClearNight", "CloudyNight",
+    "WetNight", "WetCloudyNight", "SoftRainNight", "MidRainyNight", "HardRainNight",
+    "DustStorm", "Default",
+)
+WEATHER_FIELDS: tuple[str, ...] = (
+    "cloudiness", "precipitation", "precipitation_deposits", "wind_intensity",
+    "sun_azimuth_angle", "sun_altitude_angle", "fog_density", "fog_distance", "fog_falloff",
+    "wetness", "scattering_intensity", "mie_scattering_scale", "rayleigh_scattering_scale",
+    "dust_storm",
+)
+DEFAULT_WEATHER = "ClearNoon"
