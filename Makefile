@@ -39,6 +39,7 @@ demo: setup-model
 test: setup-dev
 	$(BIN)/ruff check src tests benchmarks
 	$(BIN)/mypy
+	$(BIN)/lint-imports
 	$(BIN)/pytest -q
 
 lint: setup-dev
