@@ -173,6 +173,8 @@ class Worker:
             elif message.get("event") == "result" and isinstance(message.get("result"), dict):
                 self.checks_done += 1
                 return dict(message["result"])
+            elif message.get("event") == "child_died":
+                raise WorkerDied(self._child_death(stage, int(message.get("code") or 0)))
 
     def _death(self, stage: str, timeout: float) -> Diagnostic:
         timed_out = self.alive
@@ -190,6 +192,16 @@ class Worker:
                           message=f"the validator process died in the {stage} stage ({how})",
                           hint=("the script probably exhausted memory" if memory else
                                 "the script crashed the interpreter"))
+
+    def _child_death(self, stage: str, code: int) -> Diagnostic:
+        """The child that ran the script died without a result (the server is fine)."""
+        how = f"signal {-code}" if code < 0 else f"exit code {code}"
+        memory = code in (-signal.SIGKILL, -signal.SIGSEGV)
+        return Diagnostic(stage=Stage(stage), error_type="WorkerCrashed",
+                          message=f"the process running the script died in the {stage} "
+                                  f"stage ({how}) without a result",
+                          hint=("the script probably exhausted memory" if memory else
+                                "the script ended its own process or flooded its channel"))
 
     def kill(self) -> None:
         if self.process.poll() is None:

@@ -83,8 +83,8 @@ class _NetPortAttr(ctypes.Structure):
 
 # --- seccomp: what a script never needs ---------------------------------------------------
 _DENIED_SYSCALLS = (
-    # programs and processes (threads are clone with CLONE_THREAD, handled below)
-    "execve", "execveat", "fork", "vfork",
+    # programs (new processes: see _NEW_PROCESSES)
+    "execve", "execveat",
     # other processes' memory and descriptors
     "ptrace", "process_vm_readv", "process_vm_writev", "pidfd_getfd", "kcmp",
     # networking (offline: no sockets at all; CARLA mode re-allows TCP below)
@@ -106,6 +106,7 @@ _DENIED_SYSCALLS = (
     "settimeofday", "clock_settime", "adjtimex", "sethostname", "setdomainname",
     "personality", "lookup_dcookie", "vhangup",
 )
+_NEW_PROCESSES = ("fork", "vfork")  # and clone without CLONE_THREAD
 _CLONE_THREAD = 0x00010000
 _AF_INET, _AF_INET6 = 2, 10
 _SOCK_STREAM, _SOCK_TYPE_MASK = 1, 0xF
@@ -121,6 +122,9 @@ class ConfinementPolicy:
                                  Path("/dev/random"))
     # TCP ports the worker may connect to (the CARLA server's); empty: no network at all.
     connect_ports: tuple[int, ...] = ()
+    # A fork server (the validation worker) may fork the children that run scripts; each
+    # child then calls `forbid_new_processes()` before it touches a script.
+    allow_fork: bool = False
     memory_bytes: int | None = None
     file_size_bytes: int = 64 * 1024 * 1024
     open_files: int = 256
@@ -272,9 +276,10 @@ def _apply_seccomp(policy: ConfinementPolicy) -> None:
     for name in _DENIED_SYSCALLS:
         if _syscall_number(name) is not None:
             rules.add_rule(refuse, name)
-    # New processes: clone is allowed only for threads; clone3 hides its flags in memory,
-    # so it answers ENOSYS and the C library falls back to clone.
-    rules.add_rule(refuse, "clone", sc.Arg(0, sc.MASKED_EQ, _CLONE_THREAD, 0))
+    if not policy.allow_fork:
+        _refuse_new_processes(rules)
+    # clone3 hides its flags in memory, so it answers ENOSYS and the C library falls back
+    # to clone, whose flags a filter can read.
     if _syscall_number("clone3") is not None:
         rules.add_rule(sc.ERRNO(errno.ENOSYS), "clone3")
     # prlimit64 may read limits, never set them.
@@ -289,6 +294,27 @@ def _apply_seccomp(policy: ConfinementPolicy) -> None:
                            sc.Arg(1, sc.MASKED_EQ, _SOCK_TYPE_MASK, kind))
     else:
         rules.add_rule(sc.ERRNO(errno.EACCES), "socket")
+    rules.load()
+
+
+def _refuse_new_processes(rules: object) -> None:
+    import pyseccomp as sc
+
+    assert isinstance(rules, sc.SyscallFilter)
+    refuse = sc.ERRNO(errno.EPERM)
+    for name in _NEW_PROCESSES:
+        rules.add_rule(refuse, name)
+    rules.add_rule(refuse, "clone", sc.Arg(0, sc.MASKED_EQ, _CLONE_THREAD, 0))
+
+
+def forbid_new_processes() -> None:
+    """Stack a filter that refuses new processes (threads still work); for the child a
+    fork server starts for each script. Filters only add up: this cannot be undone."""
+    import pyseccomp as sc
+
+    rules = sc.SyscallFilter(sc.ALLOW)
+    rules.set_attr(sc.Attr.CTL_TSYNC, 1)
+    _refuse_new_processes(rules)
     rules.load()
 
 

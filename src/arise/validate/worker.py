@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import _thread
 import base64
+import contextlib
 import errno
 import io
 import json
@@ -53,6 +54,7 @@ from arise.validate.types import (
 Emit = Callable[[dict[str, Any]], None]
 OFFLINE_MODEL = "arise.validate.worldmodel.model"
 SOFT_TIMEOUT_GRACE = 2.0  # seconds between our own interrupt and the parent's kill
+MESSAGE_LIMIT_BYTES = 64 * 1024 * 1024  # a child's message longer than this is a flood
 
 
 class CheckTimeout(Exception):
@@ -81,7 +83,9 @@ def _warm_up() -> None:
 
     matplotlib.use("Agg")
     import matplotlib.font_manager  # noqa: F401
+    import matplotlib.pyplot  # noqa: F401
 
+    import arise.validate.render  # noqa: F401
     import arise.validate.worldmodel.simulator  # noqa: F401
 
 
@@ -458,12 +462,15 @@ def _useful_warnings(caught: list[warnings.WarningMessage]) -> list[str]:
 
 # --- process entry point -------------------------------------------------------------------
 def _confine(scratch: Path) -> SandboxReport:
+    import dataclasses
+
     from arise.validate.sandbox import confine, python_policy
 
     memory_mb = int(os.environ.get("ARISE_WORKER_MEMORY_MB", "0"))
     ports = tuple(int(p) for p in os.environ.get("ARISE_WORKER_CONNECT_PORTS", "").split(",")
                   if p.strip())
-    policy = python_policy(scratch, memory_mb=memory_mb, connect_ports=ports)
+    policy = dataclasses.replace(python_policy(scratch, memory_mb=memory_mb,
+                                               connect_ports=ports), allow_fork=True)
     if os.environ.get("ARISE_WORKER_CONFINE", "1") == "0":
         import resource
 
@@ -471,7 +478,110 @@ def _confine(scratch: Path) -> SandboxReport:
             resource.setrlimit(resource.RLIMIT_AS, (policy.memory_bytes, policy.memory_bytes))
         return SandboxReport(missing=list(Mechanism),
                              notes=["confinement turned off by the caller (benchmarks only)"])
-    return confine(policy)
+    report = confine(policy)
+    report.notes.append("each script runs in a fresh child process that cannot start "
+                        "processes; nothing it changes outlives its check")
+    return report
+
+
+# --- the fork server ------------------------------------------------------------------------
+PRIME_SCRIPT = """param map = localPath('prime.xodr')
+model scenic.simulators.carla.model
+ego = new Car on road, with behavior FollowLaneBehavior(target_speed=5)
+"""
+
+
+def _prime() -> None:
+    """Compile and sample one script of ours before confinement, so that the parsed world
+    model and driving domain are in memory that every child inherits."""
+    import scenic
+
+    from arise.maps.registry import MapRegistry
+    from arise.validate.map_cache import prepare_map
+
+    choice = MapRegistry(None).resolve("arise_straight")
+    prepare_map(Path(choice.path))
+    scenario = scenic.scenarioFromString(PRIME_SCRIPT, params={"map": choice.path,
+                                         "carla_map": choice.name}, model=OFFLINE_MODEL,
+                                         mode2D=True)
+    scenario.generate(maxIterations=50)
+
+
+def _preload_map(request: dict[str, Any]) -> None:
+    """Load the map the parent chose into the fork server's memo before forking (the
+    file is the parent's choice and its .snet the parent's preparation: no script data)."""
+    from scenic.domains.driving.roads import Network
+
+    path = (request.get("map") or {}).get("path")
+    if path:
+        with contextlib.suppress(Exception):
+            Network.fromFile(path)
+
+
+def _relay(read_fd: int, emit: Emit) -> bool:
+    """Pass a child's stage and result messages on; returns whether a result came."""
+    got_result = False
+    buffer = b""
+    with os.fdopen(read_fd, "rb") as stream:
+        while chunk := stream.read1(65536):
+            buffer += chunk
+            if len(buffer) > MESSAGE_LIMIT_BYTES:
+                return got_result  # a flood: the parent sees no result and says so
+            *lines, buffer = buffer.split(b"\n")
+            for line in lines:
+                try:
+                    message = json.loads(line)
+                except ValueError:
+                    continue
+                if not isinstance(message, dict) or got_result:
+                    continue
+                if message.get("event") == "stage" and message.get("stage") in \
+                        {s.value for s in Stage}:
+                    emit({"event": "stage", "stage": message["stage"]})
+                elif message.get("event") == "result" and isinstance(message.get("result"),
+                                                                      dict):
+                    emit(message)
+                    got_result = True
+    return got_result
+
+
+def _child(request: dict[str, Any], write_fd: int, scratch: Path, closing: list[int]) -> None:
+    """In the forked child: drop the server's channels, forbid processes, run the check."""
+    for fd in closing:
+        with contextlib.suppress(OSError):
+            os.close(fd)
+    if os.environ.get("ARISE_WORKER_CONFINE", "1") != "0":
+        from arise.validate.sandbox import forbid_new_processes
+
+        forbid_new_processes()
+    channel = os.fdopen(write_fd, "w", buffering=1, encoding="utf-8")
+
+    def emit(message: dict[str, Any]) -> None:
+        channel.write(json.dumps(message) + "\n")
+        channel.flush()
+
+    result = run_check(request, emit, scratch)
+    payload = result.model_dump(mode="json")
+    if result.png:
+        payload["png_data"] = base64.b64encode(Path(result.png).read_bytes()).decode()
+    emit({"event": "result", "result": payload})
+
+
+def _serve_one(request: dict[str, Any], emit: Emit, scratch: Path, protocol_fd: int) -> None:
+    read_fd, write_fd = os.pipe()
+    pid = os.fork()
+    if pid == 0:
+        try:
+            os.close(read_fd)
+            _child(request, write_fd, scratch, [0, protocol_fd])
+        finally:
+            os._exit(0)
+    os.close(write_fd)
+    got_result = _relay(read_fd, emit)
+    _, status = os.waitpid(pid, 0)
+    if not got_result:
+        code = -os.WTERMSIG(status) if os.WIFSIGNALED(status) else os.WEXITSTATUS(status)
+        emit({"event": "child_died", "code": code})
 
 
 def main() -> None:
@@ -487,17 +597,15 @@ def main() -> None:
 
     scratch = Path(os.environ.get("ARISE_WORKER_SCRATCH") or os.getcwd())
     _warm_up()
+    _prime()
     sandbox = _confine(scratch)
     emit({"event": "ready", "pid": os.getpid(), "sandbox": sandbox.model_dump(mode="json")})
     for line in sys.stdin:
         if not line.strip():
             continue
         request = json.loads(line)
-        result = run_check(request, emit, scratch)
-        payload = result.model_dump(mode="json")
-        if result.png:
-            payload["png_data"] = base64.b64encode(Path(result.png).read_bytes()).decode()
-        emit({"event": "result", "result": payload})
+        _preload_map(request)
+        _serve_one(request, emit, scratch, protocol.fileno())
 
 
 if __name__ == "__main__":
