@@ -34,13 +34,11 @@ __all__ = ["Generation", "Generator", "ReconfigureError", "generate", "slug"]
 # Rejection-sampling budget per check: enough for entries that run, and a failing
 # requirement is named within seconds instead of tens of seconds.
 SAMPLE_ITERATIONS = 250
-#: Options a Generator is built around; `reconfigure` refuses to change them.
-FIXED_OPTIONS = ("provider", "model", "threads", "cache", "record", "kb_dirs", "retrieval",
-                 "map_dir")
 
 
 class ReconfigureError(AriseError):
-    """An option a Generator was built around cannot change on it: build another."""
+    """A change `Generator.reconfigure` cannot honour (another model for a provider the
+    caller gave): build another Generator."""
 
 
 def slug(text: str) -> str:
