@@ -19,8 +19,8 @@ from pathlib import Path
 from typing import Any
 
 from arise.errors import AriseError
+from arise.maps.choice import MapChoice
 from arise.paths import cache_dir
-from arise.validate.types import MapChoice
 
 DEFAULT_MAP = "arise_intersection4"
 GENERIC_NEEDS = ("intersection4", "signalized", "multilane", "sidewalk")

@@ -10,6 +10,10 @@ from enum import StrEnum
 
 from pydantic import BaseModel, Field
 
+from arise.maps.choice import MapChoice
+
+__all__ = ["MapChoice"]  # re-exported: results carry the registry's choice
+
 
 class Stage(StrEnum):
     """Where a check stopped. Ordered as the checks run."""
@@ -93,16 +97,6 @@ class Diagnostic(BaseModel):
         where = f" line {self.line}" if self.line else ""
         section = f" [{self.section}]" if self.section else ""
         return f"{self.stage.value}{where}{section}: {self.error_type}: {self.message}"
-
-
-class MapChoice(BaseModel):
-    """Which map file a script ran on, and whether it was a substitute."""
-
-    requested: str | None
-    name: str
-    path: str
-    substituted: bool = False
-    reason: str | None = None
 
 
 class TracePoint(BaseModel):
