@@ -155,7 +155,7 @@ def prepare(entry: dict[str, Any], root: Path, listener: Listener) -> Case:
     canary = outside / f"CANARY-{name}.npy"  # .npy: numpy.save keeps the name as it is
     values = {"@CANARY@": str(canary), "@SECRET_TEXT@": SECRET_TEXT, "@SECRET@": str(secret),
               "@SSH_KEY@": str(key), "@HOME@": str(home), "@PRIVATE@": str(private),
-              "@PORT@": str(listener.port)}
+              "@PORT@": str(listener.port), "@TEST_PID@": str(os.getpid())}
 
     def fill(text: str) -> str:
         for placeholder, value in values.items():  # @SECRET_TEXT@ before @SECRET@
@@ -306,7 +306,8 @@ class LiveRun:
 
 
 @pytest.fixture(scope="session")
-def live_runs(tmp_path_factory: pytest.TempPathFactory) -> dict[str, LiveRun]:
+def live_runs(tmp_path_factory: pytest.TempPathFactory,
+              signals: SignalCounter) -> dict[str, LiveRun]:
     """Every live script run with no confinement and no gate: each in a forked child of
     an unconfined runner that imported Scenic once (tests/validate/unconfined_runner.py)."""
     root = tmp_path_factory.mktemp("live")
@@ -329,6 +330,7 @@ def live_runs(tmp_path_factory: pytest.TempPathFactory) -> dict[str, LiveRun]:
             listener = Listener()
             try:
                 case = prepare(entry, root / entry["name"], listener)
+                signals_before = signals.count
                 output_file = case.root / "output.txt"
                 runner.stdin.write(json.dumps({
                     "script": str(case.script), "cwd": str(case.work), "home": str(case.home),
@@ -340,7 +342,8 @@ def live_runs(tmp_path_factory: pytest.TempPathFactory) -> dict[str, LiveRun]:
                     "canary": case.canary_exists,
                     "secret": lambda: SECRET_TEXT in output,  # noqa: B023
                     "connection": lambda: listener.contacts > 0,  # noqa: B023
-                    "signal": lambda: reply.get("signals", 0) > 0,  # noqa: B023
+                    "signal": lambda: (reply.get("signals", 0) > 0  # noqa: B023
+                                       or signals.count > signals_before),  # noqa: B023
                     "marker": lambda: FORGED_MARKER in output,  # noqa: B023
                 }[entry["evidence"]]()
                 runs[entry["name"]] = LiveRun(evidence, f"{reply}\n{output}")

@@ -1,5 +1,5 @@
 # Hostile test script for arise's sandbox: never run it outside tests/validate/test_hostile.py.
-# persist_patch_json_dumps (persistence): monkeypatches json.dumps in the warm worker so that every result it sends says ok.
+# persist_patch_json_dumps (persistence): monkeypatches json.dumps in the worker so that every result it sends says ok, its own failure included.
 # The payload runs inside a plain `def` helper.
 # @CANARY@, @SECRET@, @SSH_KEY@, @PORT@ ... are filled in by the test (see manifest.yaml).
 Town = 'arise_straight'
@@ -22,6 +22,7 @@ def poison():
     return 1
 
 poison()
+raise RuntimeError('patched; this check fails on purpose, so a success is a forged one')
 
 egoLane = Uniform(*network.lanes)
 ego = new Car on egoLane.centerline, with blueprint "vehicle.lincoln.mkz_2017", with behavior FollowLaneBehavior(target_speed=8)

@@ -1,5 +1,5 @@
 # Hostile test script for arise's sandbox: never run it outside tests/validate/test_hostile.py.
-# persist_patch_run_check (persistence): monkeypatches the warm worker's run_check so that every later check reports ok.
+# persist_patch_run_check (persistence): monkeypatches the warm worker's run_check so that every later check reports ok (then fails on purpose).
 # The payload runs at the top level, while the script compiles.
 # @CANARY@, @SECRET@, @SSH_KEY@, @PORT@ ... are filled in by the test (see manifest.yaml).
 Town = 'arise_straight'
@@ -16,8 +16,10 @@ def lying(*args, **kwargs):
     result.diagnostic = None
     return result
 
-if original is not None:
-    main.run_check = lying
+if original is None:
+    raise RuntimeError('no run_check to patch in this process')
+main.run_check = lying
+raise RuntimeError('patched; this check fails on purpose, only the next one can tell')
 
 egoLane = Uniform(*network.lanes)
 ego = new Car on egoLane.centerline, with blueprint "vehicle.lincoln.mkz_2017", with behavior FollowLaneBehavior(target_speed=8)

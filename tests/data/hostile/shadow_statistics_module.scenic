@@ -7,7 +7,8 @@ param map = localPath(f'maps/{Town}.xodr')
 param carla_map = Town
 model scenic.simulators.carla.model
 import statistics
-middle = statistics.median([1, 2, 3])
+if getattr(statistics, 'SHADOW', None) != 'planted':
+    raise RuntimeError('the real statistics module was imported, not the planted one')
 
 egoLane = Uniform(*network.lanes)
 ego = new Car on egoLane.centerline, with blueprint "vehicle.lincoln.mkz_2017", with behavior FollowLaneBehavior(target_speed=8)

@@ -7,9 +7,11 @@ param map = localPath(f'maps/{Town}.xodr')
 param carla_map = Town
 model scenic.simulators.carla.model
 import numpy
-DROP = localPath('drop.txt')
+DROP = localPath('.') / 'drop.txt'  # localPath itself would resolve the link
 
 behavior Payload():
+    if not numpy.lib._npyio_impl.os.path.islink(DROP):
+        raise RuntimeError('drop.txt is not the planted link')
     numpy.savetxt(DROP, numpy.arange(3))
     do FollowLaneBehavior(target_speed=8)
 

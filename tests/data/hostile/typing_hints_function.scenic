@@ -9,7 +9,10 @@ model scenic.simulators.carla.model
 import random
 import typing
 
-def probe(value: "(random._os.system(\"touch '@CANARY@'\"), int)[1]"):
+def refused():
+    raise RuntimeError('os.system was refused')
+
+def probe(value: "(random._os.system(\"touch '@CANARY@'\") == 0 or refused(), int)[1]"):
     return value
 
 def inspect_probe():
