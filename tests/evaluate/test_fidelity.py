@@ -351,3 +351,84 @@ def test_truth_from_dict_rejects_unknown_keys_and_false_closeness() -> None:
         Truth.from_dict({"wether": "ClearNoon"})
     with pytest.raises(DevsetError, match="must_come_close: only true or null"):
         Truth.from_dict({"must_come_close": False})
+
+
+# -- real scripts on the real validator -----------------------------------------------------
+
+HEADER = """model scenic.simulators.carla.model
+Town = '{town}'
+param map = localPath(f'maps/{{Town}}.xodr')
+param carla_map = Town
+param weather = 'ClearNoon'
+"""
+
+# A pedestrian 20 m ahead and 4 m to one side of the ego's lane crosses it; SIDE and FACING
+# say which side it starts on and which way it faces.
+CROSSING = HEADER.format(town="arise_straight") + """
+behavior Cross():
+    do CrossingBehavior(ego, 1.5, 25) until (distance from self to ego) < 4
+    while True:
+        take SetWalkingSpeedAction(0)
+egoLane = Uniform(*network.lanes)
+start = new OrientedPoint on egoLane.centerline
+ego = new Car at start, with behavior FollowLaneBehavior(target_speed=8)
+spot = new OrientedPoint following roadDirection from start for 20
+walker = new Pedestrian SIDE of spot by 4, facing FACING deg relative to spot.heading, with regionContainedIn None, with behavior Cross()
+require spot in egoLane
+terminate when (distance to start) > 40
+"""
+
+LEFT_TURN = HEADER.format(town="arise_intersection4") + """
+turns = [m for i in network.intersections for m in i.maneuvers if m.type is ManeuverType.LEFT_TURN]
+turn = Uniform(*turns)
+route = [turn.startLane, turn.connectingLane, turn.endLane]
+start = new OrientedPoint in turn.startLane.centerline
+ego = new Car at start, with behavior FollowTrajectoryBehavior(target_speed=6, trajectory=route)
+require 8 <= (distance from ego to intersection) <= 20
+terminate when (distance to start) > 45
+"""
+
+FROM_THE_RIGHT = {"actors": [{"class": "Pedestrian", "role": "adversary", "start": "right",
+                              "direction": "crossing_right_to_left"}],
+                  "ego_maneuver": "straight", "road": "straight", "weather": None,
+                  "required_objects": ["sidewalk"]}
+
+
+def _run(script: str, name: str, tmp_path: Path, pool) -> tuple[CheckResult, frozenset[str]]:
+    from arise.maps.registry import MapRegistry
+    from arise.validate import CheckOptions, check
+
+    path = tmp_path / name
+    path.write_text(script, encoding="utf-8")
+    result = check(path, CheckOptions(seed=3, steps=150), pool=pool)
+    assert result.ok, result.summary()
+    assert result.map is not None
+    return result, MapRegistry().entries[result.map.name].features
+
+
+@pytest.mark.slow
+def test_real_scripts_score_against_hand_written_truth(tmp_path: Path, validator_pool) -> None:
+    right = CROSSING.replace("SIDE", "right").replace("FACING", "90")
+    left = CROSSING.replace("SIDE", "left").replace("FACING", "-90")
+    label = Truth.from_dict(FROM_THE_RIGHT)
+
+    result, features = _run(right, "from_right.scenic", tmp_path, validator_pool)
+    matches = score_fidelity(label, result, features)
+    assert matches.mismatches == [] and matches.score == 1.0, matches.as_dict()
+    assert {v.name for v in matches.scored} >= {
+        "actor:Pedestrian[0]", "start:Pedestrian[0]", "direction:Pedestrian[0]",
+        "no_extra_actors", "ego_maneuver", "road", "weather", "required_object:sidewalk"}
+
+    result, features = _run(left, "from_left.scenic", tmp_path, validator_pool)
+    wrong_side = score_fidelity(label, result, features)
+    assert [m.split(":")[0] + ":" + m.split(":")[1] for m in wrong_side.mismatches] == [
+        "start:Pedestrian[0]", "direction:Pedestrian[0]"], wrong_side.as_dict()
+    assert wrong_side.score is not None and wrong_side.score < 1.0
+
+    result, features = _run(LEFT_TURN, "left_turn.scenic", tmp_path, validator_pool)
+    turning = Truth.from_dict({"ego_maneuver": "left_turn", "road": "intersection",
+                               "required_objects": ["signalized"]})
+    assert score_fidelity(turning, result, features).score == 1.0
+    told_straight = score_fidelity(Truth.from_dict({"ego_maneuver": "straight"}), result,
+                                   features)
+    assert told_straight.verdict("ego_maneuver").match is False

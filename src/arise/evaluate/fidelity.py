@@ -396,7 +396,11 @@ class Fidelity:
 
     def verdict(self, name: str) -> Verdict:
         """The verdict called `name` (`start:Car[0]`, `weather`, ...)."""
-        return next(v for v in self.verdicts if v.name == name)
+        for verdict in self.verdicts:
+            if verdict.name == name:
+                return verdict
+        raise KeyError(f"no verdict {name!r}; there are: "
+                       f"{', '.join(v.name for v in self.verdicts) or 'none'}")
 
     def as_dict(self) -> dict[str, Any]:
         return {"executed": self.executed, "score": self.score, "matched": self.matched,
