@@ -86,8 +86,19 @@ def check(
         if own_pool:
             active.close()
     png_data = raw.pop("png_data", None)
-    result = CheckResult.model_validate(raw)
+    try:
+        result = CheckResult.model_validate(raw)
+    except ValueError as error:
+        return _failure(name, Stage.SIMULATE, "ProtocolViolation",
+                        f"the worker's result was malformed ({str(error).splitlines()[0]})")
     result.script = name
+    # The verdict follows from the facts, not from a flag the script's process may forge.
+    result.ok = result.diagnostic is None and result.simulation is not None
+    if not result.ok and result.diagnostic is None:
+        result.diagnostic = Diagnostic(
+            stage=Stage.SIMULATE, error_type="ProtocolViolation",
+            message="the check reported success without a simulation (a forged result?)",
+            hint="the script wrote on the validator's result channel; remove that code.")
     result.png = _write_png(options.png, png_data) if result.png else None
     return result
 

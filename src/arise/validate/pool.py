@@ -28,6 +28,7 @@ from typing import Any
 
 from arise.errors import AriseError
 from arise.paths import cache_dir
+from arise.validate.process_limit import MAX_TASKS, count_tasks, limit_tasks
 from arise.validate.types import Diagnostic, SandboxReport, Stage
 
 READY_TIMEOUT = 120.0  # seconds for a cold worker to import Scenic on a busy machine
@@ -60,6 +61,7 @@ def _worker_env(scratch: Path, memory_mb: int, connect_ports: tuple[int, ...],
     env.update(HOME=str(scratch), TMPDIR=str(scratch), ARISE_WORKER_SCRATCH=str(scratch),
                ARISE_CACHE_DIR=str(cache_dir()),
                ARISE_WORKER_MEMORY_MB=str(memory_mb),
+               ARISE_WORKER_SCRATCH_BYTES=str(SCRATCH_QUOTA_BYTES),
                ARISE_WORKER_CONNECT_PORTS=",".join(str(p) for p in connect_ports),
                ARISE_WORKER_CONFINE="1" if confine else "0",
                MPLCONFIGDIR=str(cache_dir() / "matplotlib"), MPLBACKEND="Agg",
@@ -90,6 +92,7 @@ class Worker:
             start_new_session=True, cwd=self.scratch,
             env=_worker_env(self.scratch, memory_mb, connect_ports, confine),
         )
+        self.task_limit = limit_tasks(self.process.pid) if confine else None
         self.checks_done = 0
         self._buffer = b""
         try:
@@ -103,6 +106,11 @@ class Worker:
         # Said before any script ran, so a script cannot forge it.
         self.sandbox = SandboxReport.model_validate(message.get("sandbox") or {
             "missing": ["landlock-fs", "landlock-net", "landlock-scope", "seccomp", "rlimits"]})
+        if confine:
+            self.sandbox.notes.append(
+                self.task_limit.describe() if self.task_limit else
+                f"tasks: RLIMIT_NPROC in the worker's user namespace (not for root), and the "
+                f"parent stops a worker with more than {MAX_TASKS} tasks")
 
     @property
     def alive(self) -> bool:
@@ -121,6 +129,10 @@ class Worker:
             if remaining <= 0:
                 return None
             ready, _, _ = select.select([fd], [], [], min(remaining, 0.5))
+            if count_tasks(self.process.pid) > MAX_TASKS:
+                raise WorkerDied(self._refused(
+                    "ProcessLimitExceeded", f"the script started more than {MAX_TASKS} "
+                    "threads or processes"))
             if _folder_bytes(self.scratch) > SCRATCH_QUOTA_BYTES:
                 raise WorkerDied(self._refused(
                     "DiskQuotaExceeded", f"the script wrote more than "
@@ -215,6 +227,8 @@ class Worker:
                 with contextlib.suppress(OSError):
                     stream.close()
         shutil.rmtree(self.scratch, ignore_errors=True)
+        if self.task_limit is not None:
+            self.task_limit.release()
 
 
 class WorkerPool:

@@ -60,6 +60,14 @@ _SCOPE_SIGNAL = 1 << 1
 
 _PR_SET_NO_NEW_PRIVS = 38
 
+# unshare(2) and mount(2) flags (include/uapi/linux/sched.h, mount.h)
+_CLONE_NEWNS = 0x00020000
+_CLONE_NEWUSER = 0x10000000
+_CLONE_NEWNET = 0x40000000
+_MS_NOSUID, _MS_NODEV, _MS_NOEXEC = 0x2, 0x4, 0x8
+_MS_REC, _MS_PRIVATE = 0x4000, 0x40000
+NAMESPACE_PROCESS_LIMIT = 256  # tasks (threads count) a worker may have in its namespace
+
 READ_ONLY = _FS_READ_FILE | _FS_READ_DIR
 SCRATCH = (READ_ONLY | _FS_WRITE_FILE | _FS_TRUNCATE | _FS_REMOVE_FILE | _FS_REMOVE_DIR
            | _FS_MAKE_REG | _FS_MAKE_DIR | _FS_REFER)
@@ -105,6 +113,8 @@ _DENIED_SYSCALLS = (
     "io_uring_setup", "io_uring_enter", "io_uring_register", "fanotify_init",
     "settimeofday", "clock_settime", "adjtimex", "sethostname", "setdomainname",
     "personality", "lookup_dcookie", "vhangup",
+    # memory outside the address-space limit
+    "memfd_create", "memfd_secret",
 )
 _NEW_PROCESSES = ("fork", "vfork")  # and clone without CLONE_THREAD
 _CLONE_THREAD = 0x00010000
@@ -129,6 +139,8 @@ class ConfinementPolicy:
     file_size_bytes: int = 64 * 1024 * 1024
     open_files: int = 256
     extra_processes: int = 64  # threads count as processes for RLIMIT_NPROC
+    # Set when the process already runs in its own namespaces (enter_namespaces).
+    in_namespaces: bool = False
     notes: list[str] = field(default_factory=list)
 
 
@@ -154,6 +166,40 @@ def python_policy(scratch: Path, *, memory_mb: int = 0, connect_ports: tuple[int
         memory = psutil.Process().memory_info().vms + memory_mb * 1024 * 1024
     return ConfinementPolicy(read_only=tuple(sorted(readable)), scratch=scratch,
                              connect_ports=connect_ports, memory_bytes=memory)
+
+
+def enter_namespaces(scratch: Path, scratch_bytes: int, network: bool) -> str | None:
+    """Move this (still single-threaded) process into its own user and mount namespaces,
+    and into an empty network namespace unless it needs the network; mount a tmpfs of
+    `scratch_bytes` on `scratch`. Returns why not, or None when done.
+
+    In its own user namespace the process limit binds even when the user is root (the
+    kernel exempts only root of the initial namespace), the scratch folder cannot grow
+    past its size, and offline there is no interface but a loopback that is down.
+    """
+    if not sys.platform.startswith("linux"):
+        return "namespaces exist only on Linux"
+    if threading.active_count() > 1:
+        return "namespaces need a single-threaded process"
+    libc = _libc()
+    uid, gid = os.getuid(), os.getgid()
+    flags = _CLONE_NEWUSER | _CLONE_NEWNS | (0 if network else _CLONE_NEWNET)
+    if libc.unshare(flags) != 0:
+        return f"unshare: {os.strerror(ctypes.get_errno())} (user namespaces disabled?)"
+    try:
+        for name, text in (("setgroups", "deny"), ("uid_map", f"{uid} {uid} 1"),
+                           ("gid_map", f"{gid} {gid} 1")):
+            with open(f"/proc/self/{name}", "w") as handle:
+                handle.write(text)
+    except OSError as error:
+        return f"user namespace maps: {error}"
+    if libc.mount(b"none", b"/", None, _MS_REC | _MS_PRIVATE, None) != 0:
+        return f"private mounts: {os.strerror(ctypes.get_errno())}"
+    options = f"size={scratch_bytes},mode=0700".encode()
+    if libc.mount(b"tmpfs", str(scratch).encode(), b"tmpfs", _MS_NOSUID | _MS_NODEV | _MS_NOEXEC,
+                  options) != 0:
+        return f"tmpfs scratch: {os.strerror(ctypes.get_errno())}"
+    return None
 
 
 def _libc() -> ctypes.CDLL:
@@ -307,15 +353,40 @@ def _refuse_new_processes(rules: object) -> None:
     rules.add_rule(refuse, "clone", sc.Arg(0, sc.MASKED_EQ, _CLONE_THREAD, 0))
 
 
-def forbid_new_processes() -> None:
-    """Stack a filter that refuses new processes (threads still work); for the child a
-    fork server starts for each script. Filters only add up: this cannot be undone."""
+def isolate_child() -> None:
+    """For the child a fork server starts for each script: stack a seccomp filter that
+    refuses new processes (threads still work), and enter a nested Landlock domain whose
+    scopes keep its signals and abstract sockets from reaching the server. Both only add
+    restrictions: neither can be undone."""
     import pyseccomp as sc
 
     rules = sc.SyscallFilter(sc.ALLOW)
     rules.set_attr(sc.Attr.CTL_TSYNC, 1)
     _refuse_new_processes(rules)
     rules.load()
+    abi = landlock_abi()
+    if abi >= 6:
+        _apply_landlock_scopes()
+
+
+def _apply_landlock_scopes() -> None:
+    libc = _libc()
+    libc.syscall.restype = ctypes.c_long
+    create = _syscall_number("landlock_create_ruleset")
+    restrict = _syscall_number("landlock_restrict_self")
+    if create is None or restrict is None:
+        raise OSError(errno.ENOSYS, "libseccomp does not know the Landlock syscalls")
+    attr = _RulesetAttr(handled_access_fs=0, handled_access_net=0,
+                        scoped=_SCOPE_ABSTRACT_UNIX_SOCKET | _SCOPE_SIGNAL)
+    ruleset = libc.syscall(ctypes.c_long(create), ctypes.byref(attr), ctypes.c_size_t(24),
+                           ctypes.c_uint32(0))
+    if ruleset < 0:
+        raise OSError(ctypes.get_errno(), "landlock_create_ruleset (scopes) failed")
+    try:
+        if libc.syscall(ctypes.c_long(restrict), ctypes.c_int(ruleset), ctypes.c_uint32(0)) != 0:
+            raise OSError(ctypes.get_errno(), "landlock_restrict_self (scopes) failed")
+    finally:
+        os.close(ruleset)
 
 
 def _apply_rlimits(policy: ConfinementPolicy) -> None:
@@ -330,7 +401,10 @@ def _apply_rlimits(policy: ConfinementPolicy) -> None:
     cap(resource.RLIMIT_FSIZE, policy.file_size_bytes)
     cap(resource.RLIMIT_NOFILE, policy.open_files)
     cap(resource.RLIMIT_CORE, 0)
-    cap(resource.RLIMIT_NPROC, _processes_of_user() + policy.extra_processes)
+    if policy.in_namespaces:  # counted per namespace: only this worker's own tasks
+        cap(resource.RLIMIT_NPROC, NAMESPACE_PROCESS_LIMIT)
+    else:
+        cap(resource.RLIMIT_NPROC, _processes_of_user() + policy.extra_processes)
 
 
 def _processes_of_user() -> int:
@@ -378,6 +452,8 @@ def confine(policy: ConfinementPolicy) -> SandboxReport:
             report.notes.append(f"seccomp: {error}")
     else:
         report.notes.append("seccomp: libseccomp (libseccomp.so.2) or pyseccomp is missing")
+    if policy.in_namespaces:
+        report.active.append(Mechanism.NAMESPACES)
     report.missing = [m for m in Mechanism if m not in report.active]
     return report
 
@@ -412,5 +488,15 @@ def kernel_support() -> SandboxReport:
         report.active.append(Mechanism.LANDLOCK_SCOPE)
     if seccomp_available():
         report.active.append(Mechanism.SECCOMP)
+    if _user_namespaces_allowed():
+        report.active.append(Mechanism.NAMESPACES)
     report.missing = [m for m in Mechanism if m not in report.active]
     return report
+
+
+def _user_namespaces_allowed() -> bool:
+    try:
+        limit = Path("/proc/sys/user/max_user_namespaces").read_text().strip()
+    except OSError:
+        return False
+    return limit.isdigit() and int(limit) > 0

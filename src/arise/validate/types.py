@@ -42,6 +42,9 @@ class Mechanism(StrEnum):
     LANDLOCK_SCOPE = "landlock-scope"  # signals and abstract sockets stay inside the worker
     SECCOMP = "seccomp"  # no exec, no new processes, no sockets, no kernel-facing calls
     RLIMITS = "rlimits"  # memory, file size, open files, processes, core dumps
+    # Own user, mount and (offline) network namespaces: the process limit binds even for
+    # root, scratch is a size-limited tmpfs, and there is no network interface but loopback.
+    NAMESPACES = "namespaces"
 
 
 class SandboxReport(BaseModel):

@@ -22,6 +22,7 @@ import random
 import re
 import shutil
 import sys
+import tempfile
 import threading
 import time
 import warnings
@@ -290,8 +291,11 @@ def _fresh_scratch(scratch: Path, name: str, text: str) -> str:
 
 def _sandbox_hint(error: BaseException) -> str | None:
     """A refusal by the OS-level confinement, said as such."""
+    if isinstance(error, RuntimeError) and "can't start new thread" in str(error):
+        return ("the sandbox refused this: a script may run only a few threads; remove the "
+                "construct.")
     if isinstance(error, OSError) and error.errno in (errno.EPERM, errno.EACCES, errno.ENOSYS,
-                                                     errno.EFBIG):
+                                                     errno.EFBIG, errno.ENOSPC):
         return ("the sandbox refused this: scripts run confined and may not read the user's "
                 "files, write outside their scratch folder, open network connections or "
                 "start programs; remove the construct.")
@@ -461,17 +465,36 @@ def _useful_warnings(caught: list[warnings.WarningMessage]) -> list[str]:
 
 
 # --- process entry point -------------------------------------------------------------------
-def _confine(scratch: Path) -> SandboxReport:
+def _connect_ports() -> tuple[int, ...]:
+    return tuple(int(p) for p in os.environ.get("ARISE_WORKER_CONNECT_PORTS", "").split(",")
+                 if p.strip())
+
+
+def _confined() -> bool:
+    return os.environ.get("ARISE_WORKER_CONFINE", "1") != "0"
+
+
+def _enter_namespaces(scratch: Path) -> str | None:
+    """First thing the worker does, while it is still one thread: its own namespaces."""
+    if not _confined():
+        return "namespaces: confinement turned off by the caller"
+    from arise.validate.sandbox import enter_namespaces
+
+    size = int(os.environ.get("ARISE_WORKER_SCRATCH_BYTES", str(256 * 1024 * 1024)))
+    problem = enter_namespaces(scratch, size, network=bool(_connect_ports()))
+    return f"namespaces: {problem}" if problem else None
+
+
+def _confine(scratch: Path, namespace_problem: str | None) -> SandboxReport:
     import dataclasses
 
     from arise.validate.sandbox import confine, python_policy
 
     memory_mb = int(os.environ.get("ARISE_WORKER_MEMORY_MB", "0"))
-    ports = tuple(int(p) for p in os.environ.get("ARISE_WORKER_CONNECT_PORTS", "").split(",")
-                  if p.strip())
-    policy = dataclasses.replace(python_policy(scratch, memory_mb=memory_mb,
-                                               connect_ports=ports), allow_fork=True)
-    if os.environ.get("ARISE_WORKER_CONFINE", "1") == "0":
+    policy = dataclasses.replace(
+        python_policy(scratch, memory_mb=memory_mb, connect_ports=_connect_ports()),
+        allow_fork=True, in_namespaces=namespace_problem is None)
+    if not _confined():
         import resource
 
         if policy.memory_bytes:
@@ -479,6 +502,8 @@ def _confine(scratch: Path) -> SandboxReport:
         return SandboxReport(missing=list(Mechanism),
                              notes=["confinement turned off by the caller (benchmarks only)"])
     report = confine(policy)
+    if namespace_problem:
+        report.notes.append(namespace_problem)
     report.notes.append("each script runs in a fresh child process that cannot start "
                         "processes; nothing it changes outlives its check")
     return report
@@ -550,10 +575,10 @@ def _child(request: dict[str, Any], write_fd: int, scratch: Path, closing: list[
     for fd in closing:
         with contextlib.suppress(OSError):
             os.close(fd)
-    if os.environ.get("ARISE_WORKER_CONFINE", "1") != "0":
-        from arise.validate.sandbox import forbid_new_processes
+    if _confined():
+        from arise.validate.sandbox import isolate_child
 
-        forbid_new_processes()
+        isolate_child()
     channel = os.fdopen(write_fd, "w", buffering=1, encoding="utf-8")
 
     def emit(message: dict[str, Any]) -> None:
@@ -595,10 +620,14 @@ def main() -> None:
         protocol.write(json.dumps(message) + "\n")
         protocol.flush()
 
-    scratch = Path(os.environ.get("ARISE_WORKER_SCRATCH") or os.getcwd())
+    # Started by hand (to see why a worker fails): a scratch folder of its own.
+    scratch = Path(os.environ.get("ARISE_WORKER_SCRATCH") or
+                   tempfile.mkdtemp(prefix="arise-worker-"))
+    namespace_problem = _enter_namespaces(scratch)
+    os.chdir(scratch)  # the tmpfs now mounted there, not the folder beneath it
     _warm_up()
     _prime()
-    sandbox = _confine(scratch)
+    sandbox = _confine(scratch, namespace_problem)
     emit({"event": "ready", "pid": os.getpid(), "sandbox": sandbox.model_dump(mode="json")})
     for line in sys.stdin:
         if not line.strip():
