@@ -38,6 +38,9 @@ def test_first_try_success_writes_script_report_and_picture(tmp_path, validator_
     assert "# BEGIN BEHAVIOR" in script and "ARISE: FAILED" not in script
     # The saved script really executes.
     assert check(tmp_path / "scenario.scenic", CheckOptions(seed=0), pool=validator_pool).ok
+    # Every run says which confinement its script ran under.
+    assert report["sandbox"]["active"] and not report["sandbox"]["missing"]
+    assert all(a["sandbox"].startswith("landlock+seccomp") for a in report["attempts"])
 
 
 @pytest.mark.slow

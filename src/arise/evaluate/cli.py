@@ -31,6 +31,7 @@ from arise.evaluate.runner import (
 from arise.evaluate.store import BenchStore
 from arise.generate.options import GenerateOptions, Mode
 from arise.llm.cli_options import ModelOption, ProviderOption, ReplayOption
+from arise.validate.types import confinement_summary
 
 console = Console(soft_wrap=True)
 errors = Console(stderr=True, soft_wrap=True)
@@ -155,6 +156,7 @@ def bench_command(
         written = write_report(records, out / "report", store.meta())
     executed = sum(r.ok for r in records)
     console.print(f"{executed} of {len(records)} runs executable; report: {written[0]}")
+    console.print("sandbox: " + confinement_summary([r.sandbox for r in records if r.ok]))
 
 
 def _judge_with_bar(config: BenchConfig, store: BenchStore, out: Path) -> None:
@@ -206,7 +208,8 @@ def report_command(
     with BenchStore(database) as store:  # BenchStoreError: one line, exit 2
         if recheck_runs:
             count = recheck(store)
-            console.print(f"re-checked {count} executed run(s)")
+            console.print(f"re-checked {count} executed run(s); sandbox: " +
+                          confinement_summary([r.sandbox for r in store.runs() if r.ok]))
         records, meta = store.runs(), store.meta()
     if not records:
         errors.print(f"[red]error:[/red] {database} holds no finished runs yet")

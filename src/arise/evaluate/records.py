@@ -82,6 +82,8 @@ class RunRecord:
     criticality: dict[str, Any] | None = None
     judge: dict[str, Any] | None = None
     attempts: list[AttemptRecord] = field(default_factory=list)
+    # The confinement label of the final check (`sandbox.label`), None if none ran.
+    sandbox: str | None = None
 
     def __post_init__(self) -> None:
         self.status = RunStatus(self.status)  # also when read as text
@@ -119,7 +121,8 @@ class RunRecord:
                    seconds=report["seconds"], message=report["message"], out_dir=out_dir,
                    spec=report["spec"], conformity=report["conformity"],
                    criticality=criticality,
-                   attempts=[AttemptRecord.from_report(a) for a in report["attempts"]])
+                   attempts=[AttemptRecord.from_report(a) for a in report["attempts"]],
+                   sandbox=_sandbox_label(report.get("sandbox")))
 
     @classmethod
     def from_dict(cls, data: dict[str, Any]) -> RunRecord:
@@ -127,3 +130,11 @@ class RunRecord:
         values["task"] = BenchTask(**values["task"])
         values["attempts"] = [AttemptRecord(**a) for a in values.get("attempts", [])]
         return cls(**values)
+
+
+def _sandbox_label(sandbox: Any) -> str | None:
+    if not isinstance(sandbox, dict):
+        return None
+    from arise.validate.types import SandboxReport
+
+    return SandboxReport.model_validate(sandbox).label

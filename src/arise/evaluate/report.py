@@ -13,6 +13,7 @@ from pathlib import Path
 from arise.evaluate.metrics import METRICS, Group, by_category, categories, groups
 from arise.evaluate.records import RunRecord
 from arise.generate.outputs import write_atomic
+from arise.validate.types import confinement_summary
 
 # Rows of the main table: (metric, "pass" column as the paper prints it).
 TABLE_METRICS = [("ESR single", "single"), ("ESR total", "total"), ("RCR", "total")]
@@ -151,6 +152,8 @@ def markdown(runs: Sequence[RunRecord], title: str, meta: dict[str, object]) -> 
         f"{len(runs)} runs over {len({r.task.prompt_id for r in runs})} prompts; "
         + ", ".join(f"{n} {s}" for s, n in statuses.most_common()) + ".", "",
         _settings(meta), "",
+        "Confinement of the scripts' final checks: "
+        + confinement_summary([r.sandbox for r in runs if r.ok]) + ".", "",
         "## ESR and RCR per category (the paper's Table I)", "",
         "ESR single: the first assembled script ran. ESR total: it ran after at most the "
         "repair budget. RCR: mean repair iterations, the successful one included, over runs "

@@ -22,7 +22,7 @@ from arise.llm.cli_options import (
     RecordOption,
     ReplayOption,
 )
-from arise.validate.types import Simulator
+from arise.validate.types import Simulator, confinement_summary
 
 console = Console(soft_wrap=True)
 errors = Console(stderr=True, soft_wrap=True)
@@ -116,6 +116,10 @@ def generate_command(
                 if not as_json:
                     mark = "[green]✔[/green]" if run.ok else "[red]✘[/red]"
                     console.print(f"{mark} {folder}: {run.summary()}")
+                    labels = [a.check.sandbox.label if a.check and a.check.sandbox else None
+                              for a in run.attempts if a.check is not None]
+                    if labels:
+                        console.print("  sandbox: " + confinement_summary(labels))
                     for note in run.contradictions:
                         console.print(f"  [yellow]contradiction:[/yellow] {note}")
     if as_json:

@@ -64,6 +64,7 @@ class Attempt:
             "index": self.index, "kind": self.kind.value, "detail": self.detail, "ok": self.ok,
             "diagnostic": self.diagnostic.model_dump(mode="json") if self.diagnostic else None,
             "diff": self.diff, "check_seconds": round(self.check_seconds, 3),
+            "sandbox": self.check.sandbox.label if self.check and self.check.sandbox else None,
             "llm": self.llm_usage.as_dict(),
         }
 
@@ -155,6 +156,9 @@ class Generation:
             "simulation": (final.simulation.model_dump(mode="json", exclude={"agents"})
                            if final and final.simulation else None),
             "conformity": self.conformity,
+            # The confinement the final script ran under (every attempt has its label).
+            "sandbox": (final.sandbox.model_dump(mode="json")
+                        if final and final.sandbox else None),
         }
 
     def summary(self) -> str:

@@ -128,6 +128,7 @@ def validate_command(
     """
     from arise.kb.runner import ScriptOutcome, validate_kb
     from arise.validate import CheckOptions
+    from arise.validate.types import confinement_summary
 
     kb = _load(kb_dirs)
     only = [e.id for e in kb if (component is None or e.component is component)
@@ -155,9 +156,12 @@ def validate_command(
             "scripts": [{"name": o.composition.name, "entries": o.composition.ids,
                          "adversary": o.composition.adversary_class,
                          "map": o.composition.map_name, "ok": o.ok,
-                         "error": None if o.ok else o.result.summary()}
+                         "error": None if o.ok else o.result.summary(),
+                         "sandbox": o.result.sandbox.label if o.result.sandbox else None}
                         for o in report.outcomes],
         }))
     else:
         console.print(report.summary())
+        console.print("sandbox: " + confinement_summary(
+            [o.result.sandbox.label if o.result.sandbox else None for o in report.outcomes]))
     raise typer.Exit(0 if report.ok else 1)

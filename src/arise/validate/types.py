@@ -73,6 +73,18 @@ class SandboxReport(BaseModel):
         return text
 
 
+def confinement_summary(labels: list[str | None]) -> str:
+    """One line for many checks: which confinement they ran under, and how many each."""
+    counts: dict[str, int] = {}
+    for label in labels:
+        key = label or "none (never reached a worker)"
+        counts[key] = counts.get(key, 0) + 1
+    if len(counts) == 1:
+        (label, count), = counts.items()
+        return f"{label} ({'all ' if count > 1 else ''}{count} check{'s' * (count > 1)})"
+    return "; ".join(f"{label}: {count}" for label, count in sorted(counts.items()))
+
+
 class Rejection(BaseModel):
     """One reason Scenic threw away samples, with how often and where."""
 
