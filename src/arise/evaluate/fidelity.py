@@ -294,6 +294,15 @@ def _parse_truth(data: object) -> tuple[Truth | None, list[str]]:
                  must_come_close=close), []
 
 
+def parse_truth(data: object, where: str = "truth") -> Truth:
+    """One truth object (a dev-set line's "truth", or a bench prompt's); raise DevsetError
+    naming every problem."""
+    truth, problems = _parse_truth(data)
+    if problems or truth is None:
+        raise DevsetError(f"{where}: " + "; ".join(problems or ["unreadable truth"]))
+    return truth
+
+
 def load_devset(path: str | Path) -> list[LabeledDescription]:
     """Read one dev-set file (JSONL); raise DevsetError listing every bad line and why."""
     path = Path(path)

@@ -64,6 +64,11 @@ def mean_scs(runs: Sequence[RunRecord]) -> float | None:
     return _mean(r.scs for r in runs if r.ok)
 
 
+def mean_fidelity(runs: Sequence[RunRecord]) -> float | None:
+    """Mean share of hand-labeled facts the traces bear out, over executed runs."""
+    return _mean(r.fidelity_score for r in runs if r.ok)
+
+
 def mean_conformity(runs: Sequence[RunRecord]) -> float | None:
     return _mean(r.conformity_score for r in runs if r.ok)
 
@@ -87,6 +92,7 @@ METRICS: dict[str, Metric] = {
     "RCR": rcr,
     "SCS": mean_scs,
     "conformity": mean_conformity,
+    "fidelity": mean_fidelity,
     "LLM calls / exec": calls_per_executable,
     "tokens / exec": tokens_per_executable,
     "seconds / exec": seconds_per_executable,

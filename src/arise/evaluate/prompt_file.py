@@ -17,6 +17,9 @@ class BenchPrompt:
     id: str
     description: str
     category: str = UNCATEGORISED
+    # Hand-written truth (a dev-set line's "truth", as canonical JSON): runs of this prompt
+    # get a fidelity score read from their traces against it.
+    truth: str | None = None
 
 
 class PromptFileError(AriseError):
@@ -32,8 +35,18 @@ def _prompt(index: int, description: object, category: object, prompt_id: object
                        category=str(category or UNCATEGORISED).strip() or UNCATEGORISED)
 
 
+def _with_truth(prompt: BenchPrompt, truth: object, where: str) -> BenchPrompt:
+    from dataclasses import replace
+
+    from arise.evaluate.fidelity import parse_truth
+
+    parse_truth(truth, where)  # DevsetError (an AriseError) names what is wrong
+    return replace(prompt, truth=json.dumps(truth, sort_keys=True))
+
+
 def read_prompts(path: Path) -> list[BenchPrompt]:
-    """Prompts in file order. JSONL rows: {"description", "category"?, "id"?}; CSV with a
+    """Prompts in file order. JSONL rows: {"description" (or "text"), "category"?, "id"?,
+    "truth"? (hand-written facts, as in src/arise/evaluate/devsets)}; CSV with a
     header holding `description` (and optionally `category`, `id`); TXT: one description
     per line, or `category<TAB>description`; blank lines and `#` comments are skipped."""
     if not path.is_file():
@@ -54,8 +67,11 @@ def read_prompts(path: Path) -> list[BenchPrompt]:
                 raise PromptFileError(f"{path}:{number}: not JSON ({error.msg})") from error
             if not isinstance(row, dict):
                 raise PromptFileError(f"{path}:{number}: expected an object per line")
-            prompts.append(_prompt(len(prompts) + 1, row.get("description"),
-                                   row.get("category"), row.get("id"), f"{path}:{number}"))
+            prompt = _prompt(len(prompts) + 1, row.get("description", row.get("text")),
+                             row.get("category"), row.get("id"), f"{path}:{number}")
+            if row.get("truth") is not None:
+                prompt = _with_truth(prompt, row["truth"], f"{path}:{number}")
+            prompts.append(prompt)
     elif suffix == ".csv":
         reader = csv.DictReader(text.splitlines())
         if not reader.fieldnames or "description" not in reader.fieldnames:

@@ -24,6 +24,7 @@ class BenchTask:
     mode: str
     temperature: float
     run_index: int
+    truth: str | None = None  # canonical JSON of the prompt's hand-written truth
 
     @property
     def key(self) -> tuple[str, str, float, int]:
@@ -84,6 +85,8 @@ class RunRecord:
     attempts: list[AttemptRecord] = field(default_factory=list)
     # The confinement label of the final check (`sandbox.label`), None if none ran.
     sandbox: str | None = None
+    # Facts read from the trace against the prompt's hand-written truth (evaluate.fidelity).
+    fidelity: dict[str, Any] | None = None
 
     def __post_init__(self) -> None:
         self.status = RunStatus(self.status)  # also when read as text
@@ -99,6 +102,11 @@ class RunRecord:
     @property
     def scs(self) -> float | None:
         value = (self.judge or {}).get("scs")
+        return float(value) if isinstance(value, int | float) else None
+
+    @property
+    def fidelity_score(self) -> float | None:
+        value = (self.fidelity or {}).get("score")
         return float(value) if isinstance(value, int | float) else None
 
     @property

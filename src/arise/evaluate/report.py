@@ -18,7 +18,7 @@ from arise.validate.types import confinement_summary
 # Rows of the main table: (metric, "pass" column as the paper prints it).
 TABLE_METRICS = [("ESR single", "single"), ("ESR total", "total"), ("RCR", "total")]
 COST_METRICS = ["LLM calls / exec", "tokens / exec", "seconds / exec", "median s (exec)"]
-QUALITY_METRICS = ["conformity", "SCS"]
+QUALITY_METRICS = ["fidelity", "conformity", "SCS"]
 CRITICALITY_METRICS = ["collision rate", "min distance (m)", "min TTC (s)",
                        "route completion"]
 PAPER_ORDER = ["straight_obstacle", "turning_obstacle", "lane_changing", "vehicle_passing",
@@ -161,10 +161,13 @@ def markdown(runs: Sequence[RunRecord], title: str, meta: dict[str, object]) -> 
         "values.", "",
         _markdown_table(runs, [m for m, _ in TABLE_METRICS], with_pass=True), "",
         "## Semantic conformity", "",
-        "conformity: share of the deterministic facts (adversary class, ego maneuver, road, "
-        "start position, reach of the ego's path, weather, other objects) that agree with "
-        "the extracted spec. SCS: the LLM judge's score (N/A when not judged). Both over "
-        "executed runs.", "",
+        "fidelity: share of the hand-written facts of the prompt (actor classes and counts, "
+        "start sides and directions, ego maneuver, road, weather, required objects, "
+        "closeness) that the trace bears out (N/A: the prompt has no truth). conformity: "
+        "share of the deterministic facts (adversary class, ego maneuver, road, start "
+        "position, reach of the ego's path, weather, other objects) that agree with the "
+        "model's own extracted spec, a weaker, second number. SCS: the LLM judge's score "
+        "(N/A when not judged). All over executed runs.", "",
         _markdown_table(runs, QUALITY_METRICS), "", _mismatches(runs), "",
         "## Cost per executable script", "",
         "What all runs of a category spent divided by its executable scripts; the median is "

@@ -23,6 +23,7 @@ from arise.generate.options import GenerateOptions, Mode
 from arise.generate.pipeline import Generator
 from arise.generate.run import Generation
 from arise.llm.accounting import UsageLedger
+from arise.validate import CheckResult
 
 EXECUTORS = ("local", "ray")
 
@@ -51,7 +52,7 @@ class BenchConfig:
 def plan(config: BenchConfig) -> list[BenchTask]:
     """Every task in a stable order: run by run, so an early stop covers all prompts."""
     return [BenchTask(prompt_id=p.id, category=p.category, description=p.description,
-                      mode=mode.value, temperature=temperature, run_index=run)
+                      mode=mode.value, temperature=temperature, run_index=run, truth=p.truth)
             for run in range(config.runs) for temperature in config.temperatures
             for mode in config.modes for p in config.prompts]
 
@@ -79,6 +80,31 @@ def record_of(task: BenchTask, run: Generation, out_dir: Path | None) -> RunReco
     crit = criticality(final.simulation if final is not None and run.ok else None)
     return RunRecord.from_report(task, run.report(), out_dir=str(out_dir) if out_dir else None,
                                  criticality=crit.as_dict() if crit else None)
+
+
+def fidelity_of(generator: Generator, task: BenchTask,
+                check: CheckResult | None) -> dict[str, Any] | None:
+    """The run's trace against the prompt's hand-written truth (never against its spec)."""
+    if task.truth is None:
+        return None
+    from arise.evaluate.fidelity import Fidelity, parse_truth, score_fidelity
+
+    if check is None:
+        return Fidelity(executed=False).as_dict()
+    entry = generator.registry.entries.get(check.map.name) if check.map else None
+    truth = parse_truth(json.loads(task.truth), task.prompt_id)
+    return score_fidelity(truth, check, entry.features if entry else None).as_dict()
+
+
+def add_to_report(path: Path, key: str, value: Any) -> None:
+    """Add one entry to a run's report.json, whole or not at all."""
+    if not path.is_file():
+        return
+    report = json.loads(path.read_text(encoding="utf-8"))
+    report[key] = value
+    temporary = path.with_suffix(".json.tmp")
+    temporary.write_text(json.dumps(report, indent=2, default=str), encoding="utf-8")
+    os.replace(temporary, path)
 
 
 class TaskRunner:
@@ -119,6 +145,9 @@ class TaskRunner:
         out_dir = task_dir(self.out_root, task)
         generation = generator.generate(task.description, out_dir)
         record = record_of(task, generation, out_dir)
+        if task.truth is not None:
+            record.fidelity = fidelity_of(generator, task, generation.final_check)
+            add_to_report(out_dir / "report.json", "fidelity", record.fidelity)
         if self.judging and generation.ok:
             record.judge = judge_run(self.judge_llm(generator), task, out_dir,
                                      generator.options.seed)
@@ -309,6 +338,8 @@ def recheck(store: BenchStore, on_record: OnRecord | None = None) -> int:
                 ScenarioSpec.model_validate(record.spec), result).as_dict()
             crit = criticality(result.simulation if result.ok else None)
             record.criticality = crit.as_dict() if crit else None
+            record.fidelity = fidelity_of(generator, record.task, result)
+            record.sandbox = result.sandbox.label if result.sandbox else None
             store.save(record)
             count += 1
             if on_record:
