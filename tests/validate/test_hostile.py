@@ -8,8 +8,9 @@ must see nothing, the test process must get no signal, and the result must be a 
 failure under full confinement.
 
 The liveness test proves the corpus is not vacuous: the harmless attacks (`live: true`)
-are run without any confinement and without the gate, in a throwaway subprocess, and
-must succeed there.
+are run without any confinement and without the gate, each in a throwaway forked child of
+an unconfined runner (tests/validate/unconfined_runner.py: Scenic's own
+`scenarioFromFile` with arise's offline world model, 40 steps), and must succeed there.
 """
 
 from __future__ import annotations
@@ -256,7 +257,9 @@ def _escapes(case: Case, result: Any, contacts_before: int, signals_before: int,
     diagnostic = result.diagnostic
     if diagnostic is None or not diagnostic.stage or not diagnostic.message.strip():
         problems.append(f"no clear diagnostic: {diagnostic!r}")
-    if result.sandbox is not None and not result.sandbox.full:
+    if result.sandbox is None:
+        problems.append("the result does not say which confinement it ran under")
+    elif not result.sandbox.full:
         problems.append(f"it ran without full confinement: {result.sandbox.label}")
     return problems
 
