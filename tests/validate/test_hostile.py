@@ -230,6 +230,9 @@ def test_manifest_names_every_script_once() -> None:
     assert len(names) == len(set(names))
     assert sorted(names) == sorted(path.stem for path in HOSTILE.glob("*.scenic"))
     assert len(names) >= 44
+    # One documented limit, and only one: a script past the gate can forge its own verdict.
+    assert [e["name"] for e in MANIFEST if e.get("limitation")] == ["out_forged_result_with_facts"]
+    assert all(e.get("limitation") in (None, "self_verdict") for e in MANIFEST)
     for entry in MANIFEST:
         assert entry["where"] in ("top", "def", "behavior", "monitor", "require", "worker")
         assert not entry["live"] or entry["evidence"] in (
@@ -238,8 +241,11 @@ def test_manifest_names_every_script_once() -> None:
 
 # --- every script, with and without the static gate -----------------------------------------
 def _escapes(case: Case, result: Any, contacts_before: int, signals_before: int,
-             signals: SignalCounter) -> list[str]:
-    """What got out, or what is not a clear failure; empty when the script was contained."""
+             signals: SignalCounter, may_forge_verdict: bool = False) -> list[str]:
+    """What got out, or what is not a clear failure; empty when the script was contained.
+
+    `may_forge_verdict`: the one documented limit (a script past the gate can lie about
+    its own outcome); everything else is still checked."""
     problems = []
     if case.canary_exists():
         problems.append(f"the canary {case.canary.name} exists")
@@ -252,11 +258,13 @@ def _escapes(case: Case, result: Any, contacts_before: int, signals_before: int,
                         f"{case.listener.datagrams} UDP)")
     if signals.count > signals_before:
         problems.append("the test process got a signal from the script")
-    if result.ok is not False:
+    if may_forge_verdict:
+        pass
+    elif result.ok is not False:
         problems.append("the check reported success")
-    diagnostic = result.diagnostic
-    if diagnostic is None or not diagnostic.stage or not diagnostic.message.strip():
-        problems.append(f"no clear diagnostic: {diagnostic!r}")
+    elif result.diagnostic is None or not result.diagnostic.stage \
+            or not result.diagnostic.message.strip():
+        problems.append(f"no clear diagnostic: {result.diagnostic!r}")
     if result.sandbox is None:
         problems.append("the result does not say which confinement it ran under")
     elif not result.sandbox.full:
@@ -292,7 +300,8 @@ def test_hostile_script_is_contained(entry: dict[str, Any], hostile_pool: Worker
         except Exception as error:  # check() must never raise for a bad script
             report.append(f"{label}: check() raised {type(error).__name__}: {error}")
             continue
-        problems = _escapes(case, result, contacts, signals_before, signals)
+        forged = not static_gate and entry.get("limitation") == "self_verdict"
+        problems = _escapes(case, result, contacts, signals_before, signals, forged)
         if entry.get("followup"):
             problems += _followup_problems(hostile_pool)
         if problems:

@@ -203,6 +203,9 @@ class _Walker(ast.NodeVisitor):
     # Names the script binds itself (assignments, loops, arguments, definitions): its own
     # values, so a variable called `code` or `utils` is not the module of that name.
     bound: frozenset[str] = frozenset()
+    # Name nodes that are called directly (`getattr(x, 'a')`): there the arguments are
+    # checked; anywhere else `getattr` would be a value that checks nothing.
+    called: set[int] = field(default_factory=set)
 
     def refuse(self, node: ast.AST, what: str) -> None:
         line = getattr(node, "lineno", 1) or 1
@@ -239,6 +242,10 @@ class _Walker(ast.NodeVisitor):
 
     # names and attributes ---------------------------------------------------------------
     def visit_Name(self, node: ast.Name) -> None:
+        if node.id in ATTRIBUTE_BUILTINS and id(node) not in self.called:
+            self.refuse(node, f"'{node.id}' may only be called with a literal attribute name, "
+                              "not passed around as a value")
+            return
         if node.id in self.modules or (node.id in self.bound and not node.id.startswith("_")):
             return
         if node.id.startswith("__"):
@@ -282,6 +289,10 @@ class _Walker(ast.NodeVisitor):
     # calls ------------------------------------------------------------------------------
     def visit_Call(self, node: ast.Call) -> None:
         func = node.func
+        if isinstance(func, ast.Name):
+            self.called.add(id(func))
+        if isinstance(func, ast.Name) and func.id in ATTRIBUTE_BUILTINS and len(node.args) < 2:
+            self.refuse(node, f"'{func.id}' needs an object and a literal attribute name")
         if isinstance(func, ast.Name) and func.id in ATTRIBUTE_BUILTINS and len(node.args) >= 2:
             name = node.args[1]
             if not (isinstance(name, ast.Constant) and isinstance(name.value, str)):

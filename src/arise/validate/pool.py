@@ -172,12 +172,13 @@ class Worker:
             self.process.stdin.write((json.dumps(request) + "\n").encode())
             self.process.stdin.flush()
         except BrokenPipeError:
-            raise WorkerDied(self._death(stage, timeout)) from None
+            raise WorkerDied(self._death(stage, timeout, timed_out=False)) from None
         deadline = time.monotonic() + timeout + KILL_GRACE
         while True:
             message = self._read_message(deadline)
-            if message is None:
-                raise WorkerDied(self._death(stage, timeout))
+            if message is None:  # the deadline passed, or the worker closed its channel
+                raise WorkerDied(self._death(stage, timeout,
+                                             timed_out=time.monotonic() >= deadline))
             if message.get("event") == "stage":
                 stage = message["stage"]
                 if on_stage:
@@ -188,8 +189,10 @@ class Worker:
             elif message.get("event") == "child_died":
                 raise WorkerDied(self._child_death(stage, int(message.get("code") or 0)))
 
-    def _death(self, stage: str, timeout: float) -> Diagnostic:
-        timed_out = self.alive
+    def _death(self, stage: str, timeout: float, timed_out: bool) -> Diagnostic:
+        """Why the worker stopped answering: its deadline passed (a timeout), or it died
+        before (a crash). Decided by the clock, not by whether it is still alive, which
+        races with a worker that is dying."""
         self.kill()
         code = self.process.returncode
         if timed_out:
