@@ -38,6 +38,7 @@ demo: setup-model
 ## the whole test suite, with lint and type checks
 test: setup-dev
 	$(BIN)/ruff check src tests benchmarks
+	$(BIN)/ruff format --check src tests benchmarks
 	$(BIN)/mypy
 	$(BIN)/lint-imports
 	$(BIN)/pytest -q

@@ -64,8 +64,15 @@ def main() -> None:
         per_query = (time.perf_counter() - started) / len(queries)
         for component in Component:
             score = scores[component]
-            rows.append((retriever.name, component.value, score.queries,
-                         score.rate(score.top1), score.rate(score.topk)))
+            rows.append(
+                (
+                    retriever.name,
+                    component.value,
+                    score.queries,
+                    score.rate(score.top1),
+                    score.rate(score.topk),
+                )
+            )
             if args.misses:
                 for miss in score.misses:
                     print(f"  miss [{retriever.name}/{component.value}] {miss}")

@@ -72,8 +72,12 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--rounds", type=int, default=2, help="warm rounds over all scripts")
     parser.add_argument("--map-dir", default=None, help="extra maps (e.g. CARLA towns)")
-    parser.add_argument("--fresh", type=int, default=len(SCRIPTS),
-                        help="how many scripts to time with a fresh process each")
+    parser.add_argument(
+        "--fresh",
+        type=int,
+        default=len(SCRIPTS),
+        help="how many scripts to time with a fresh process each",
+    )
     args = parser.parse_args()
     options = CheckOptions(seed=1, steps=300, map_dir=args.map_dir, timeout=120)
 
@@ -98,8 +102,11 @@ def main() -> None:
                 started = time.perf_counter()
                 Worker(options.memory_mb, (), confine).kill()
                 starts[confine].append(time.perf_counter() - started)
-        with PeakRss() as warm_rss, WorkerPool(size=1) as pool, \
-                WorkerPool(size=1, confine=False) as open_pool:
+        with (
+            PeakRss() as warm_rss,
+            WorkerPool(size=1) as pool,
+            WorkerPool(size=1, confine=False) as open_pool,
+        ):
             for each in (pool, open_pool):
                 each.warm()
                 check(scripts[0], options, pool=each)  # first map parse: not steady state
@@ -117,24 +124,33 @@ def main() -> None:
                             failures.append(f"{script.name}: confinement incomplete")
 
     load = os.getloadavg()[0]
-    print(f"machine: {platform.machine()}, {psutil.cpu_count()} cores, "
-          f"{psutil.virtual_memory().total / 2**30:.0f} GiB; load average at end {load:.2f}")
-    print(f"scripts: {len(scripts)}, warm rounds: {args.rounds}, "
-          f"median steps simulated: {statistics.median(steps) if steps else 0:g}\n")
+    print(
+        f"machine: {platform.machine()}, {psutil.cpu_count()} cores, "
+        f"{psutil.virtual_memory().total / 2**30:.0f} GiB; load average at end {load:.2f}"
+    )
+    print(
+        f"scripts: {len(scripts)}, warm rounds: {args.rounds}, "
+        f"median steps simulated: {statistics.median(steps) if steps else 0:g}\n"
+    )
     print("| mode | checks | median s | p90 s | max s | peak worker RSS MB |")
     print("|---|---|---|---|---|---|")
-    for name, times, rss in (("fresh process (confined)", fresh, fresh_rss.peak),
-                             ("warm pool (confined)", warm, warm_rss.peak),
-                             ("warm pool, unconfined (benchmark only)", unconfined,
-                              warm_rss.peak)):
+    for name, times, rss in (
+        ("fresh process (confined)", fresh, fresh_rss.peak),
+        ("warm pool (confined)", warm, warm_rss.peak),
+        ("warm pool, unconfined (benchmark only)", unconfined, warm_rss.peak),
+    ):
         ordered = sorted(times)
         p90 = ordered[int(0.9 * (len(ordered) - 1))] if ordered else 0
-        print(f"| {name} | {len(times)} | {statistics.median(times):.2f} | {p90:.2f} | "
-              f"{max(times):.2f} | {rss / 2**20:.0f} |")
+        print(
+            f"| {name} | {len(times)} | {statistics.median(times):.2f} | {p90:.2f} | "
+            f"{max(times):.2f} | {rss / 2**20:.0f} |"
+        )
     ratio = statistics.median(warm) / statistics.median(unconfined)
-    print(f"\nconfined / unconfined warm median: {ratio:.3f}; worker start (median of 3) "
-          f"{statistics.median(starts[True]):.2f} s confined vs "
-          f"{statistics.median(starts[False]):.2f} s unconfined")
+    print(
+        f"\nconfined / unconfined warm median: {ratio:.3f}; worker start (median of 3) "
+        f"{statistics.median(starts[True]):.2f} s confined vs "
+        f"{statistics.median(starts[False]):.2f} s unconfined"
+    )
     if failures:
         print("\nfailures:\n" + "\n".join(sorted(set(failures))))
 

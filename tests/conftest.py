@@ -34,8 +34,9 @@ def validator_pool() -> Iterator[WorkerPool]:
 def carla_maps() -> Path:
     found = carla_towns_dir()
     if found is None:
-        pytest.skip("CARLA town maps not found (set ARISE_CARLA_MAPS or put shared/ beside "
-                    "the clone)")
+        pytest.skip(
+            "CARLA town maps not found (set ARISE_CARLA_MAPS or put shared/ beside the clone)"
+        )
     return found
 
 

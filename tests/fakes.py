@@ -36,8 +36,9 @@ class ScriptedProvider(BaseProvider):
         reply = self.replies.pop(0)
         if isinstance(reply, BaseException):
             raise reply
-        return Completion(text=reply, usage=CALL_USAGE, model=self.model, latency=0.5,
-                          provider=self.name)
+        return Completion(
+            text=reply, usage=CALL_USAGE, model=self.model, latency=0.5, provider=self.name
+        )
 
 
 class FakeValidator:
@@ -58,9 +59,14 @@ def passed() -> CheckResult:
     return CheckResult(ok=True, script="scenario.scenic")
 
 
-def failed(stage: Stage = Stage.SIMULATE, error_type: str = "TypeError",
-           message: str = "something went wrong", section: str | None = None,
-           **fields: object) -> CheckResult:
-    diagnostic = Diagnostic(stage=stage, error_type=error_type, message=message,
-                            section=section, **fields)  # type: ignore[arg-type]
+def failed(
+    stage: Stage = Stage.SIMULATE,
+    error_type: str = "TypeError",
+    message: str = "something went wrong",
+    section: str | None = None,
+    **fields: object,
+) -> CheckResult:
+    diagnostic = Diagnostic(
+        stage=stage, error_type=error_type, message=message, section=section, **fields
+    )  # type: ignore[arg-type]
     return CheckResult(ok=False, script="scenario.scenic", diagnostic=diagnostic)

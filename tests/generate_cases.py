@@ -28,9 +28,15 @@ class Case:
     extra: dict[str, object] = field(default_factory=dict)
 
     def options(self, **overrides: object) -> GenerateOptions:
-        values: dict[str, object] = dict(mode=self.mode, max_repairs=self.max_repairs,
-                                         kb_dirs=list(self.kb_dirs), seed=0, temperature=0.0,
-                                         retrieval="bm25", cache=False)
+        values: dict[str, object] = dict(
+            mode=self.mode,
+            max_repairs=self.max_repairs,
+            kb_dirs=list(self.kb_dirs),
+            seed=0,
+            temperature=0.0,
+            retrieval="bm25",
+            cache=False,
+        )
         values.update(self.extra)
         values.update(overrides)
         return GenerateOptions.model_validate(values)
@@ -41,18 +47,38 @@ class Case:
 
 
 CASES = {
-    case.name: case for case in [
-        Case("first_try", "A cyclist riding ahead in the ego's lane suddenly brakes to a "
-                          "full stop."),
-        Case("rule_fix", "A pedestrian on a unicycle wobbles along the gutter ahead of the "
-                         "ego and tips into its lane.", kb_dirs=(str(FAULTY_KB),)),
-        Case("llm_repair", "A jogger zigzags across the boulevard in front of the ego car.",
-             kb_dirs=(str(FAULTY_KB),)),
-        Case("give_up", "A pedestrian street mime hops across the avenue in front of the ego "
-                        "car and pirouettes.", kb_dirs=(str(FAULTY_KB),), max_repairs=1),
-        Case("single_pass", "The ego turns left at an intersection while an oncoming car goes "
-                            "straight through.", mode=Mode.SINGLE_PASS),
-        Case("chatscene", "The ego turns left at an intersection while an oncoming car goes "
-                          "straight through.", mode=Mode.CHATSCENE),
+    case.name: case
+    for case in [
+        Case(
+            "first_try", "A cyclist riding ahead in the ego's lane suddenly brakes to a full stop."
+        ),
+        Case(
+            "rule_fix",
+            "A pedestrian on a unicycle wobbles along the gutter ahead of the "
+            "ego and tips into its lane.",
+            kb_dirs=(str(FAULTY_KB),),
+        ),
+        Case(
+            "llm_repair",
+            "A jogger zigzags across the boulevard in front of the ego car.",
+            kb_dirs=(str(FAULTY_KB),),
+        ),
+        Case(
+            "give_up",
+            "A pedestrian street mime hops across the avenue in front of the ego "
+            "car and pirouettes.",
+            kb_dirs=(str(FAULTY_KB),),
+            max_repairs=1,
+        ),
+        Case(
+            "single_pass",
+            "The ego turns left at an intersection while an oncoming car goes straight through.",
+            mode=Mode.SINGLE_PASS,
+        ),
+        Case(
+            "chatscene",
+            "The ego turns left at an intersection while an oncoming car goes straight through.",
+            mode=Mode.CHATSCENE,
+        ),
     ]
 }

@@ -18,9 +18,11 @@ CASSETTES = ROOT / "cassettes" / "judge"
 
 #: Says clear noon and a pedestrian from the right sidewalk, so the car-in-rain script
 #: contradicts it on adversary type, weather, behavior and spawn.
-PEDESTRIAN = ("On a clear day at noon, the ego car drives along a straight two-lane road. "
-              "A pedestrian suddenly steps off the right sidewalk, walks into the ego's lane "
-              "and stops right in front of it.")
+PEDESTRIAN = (
+    "On a clear day at noon, the ego car drives along a straight two-lane road. "
+    "A pedestrian suddenly steps off the right sidewalk, walks into the ego's lane "
+    "and stops right in front of it."
+)
 CHILD_DIR = DATA / "child_behind_van"  # a generation folder: scenario.scenic + report.json
 
 
@@ -49,7 +51,8 @@ def child_description() -> str:
 
 
 CASES = {
-    case.name: case for case in [
+    case.name: case
+    for case in [
         # a real generator output that follows the description
         Case("good", PEDESTRIAN, DATA / "pedestrian_stops.scenic"),
         # the same description against a car braking ahead in hard rain
@@ -57,7 +60,6 @@ CASES = {
         # a real generator output with real flaws: the child never freezes, rain unasked for
         Case("child", child_description(), CHILD_DIR),
         # the consistency study: the good pair three times, sampled
-        Case("repeat", PEDESTRIAN, DATA / "pedestrian_stops.scenic", repeat=3,
-             temperature=0.7),
+        Case("repeat", PEDESTRIAN, DATA / "pedestrian_stops.scenic", repeat=3, temperature=0.7),
     ]
 }

@@ -1,6 +1,6 @@
 """Record the generator cassettes from the real embedded model (not a test; run by hand).
 
-    .venv/bin/python tests/record_generate_cassettes.py [CASE ...]
+.venv/bin/python tests/record_generate_cassettes.py [CASE ...]
 """
 
 from __future__ import annotations
@@ -24,8 +24,10 @@ def main() -> None:
         with Generator(case.options(record=str(case.cassette))) as generator:
             run = generator.generate(case.description)
         kinds = [f"{a.kind}:{'ok' if a.ok else 'fail'}" for a in run.attempts]
-        print(f"{name}: {run.status} {kinds} {run.usage.calls} calls "
-              f"{run.seconds:.0f}s -- {run.message or ''}")
+        print(
+            f"{name}: {run.status} {kinds} {run.usage.calls} calls "
+            f"{run.seconds:.0f}s -- {run.message or ''}"
+        )
 
 
 if __name__ == "__main__":

@@ -28,14 +28,22 @@ def main() -> None:
             case.cassette.unlink()
         started = time.perf_counter()
         with get_provider("local", cache=False, record=case.cassette) as llm:
-            result = consistency(case.description, case.script_text(), llm, repeat=case.repeat,
-                                 temperature=case.temperature, seed=case.seed)
+            result = consistency(
+                case.description,
+                case.script_text(),
+                llm,
+                repeat=case.repeat,
+                temperature=case.temperature,
+                seed=case.seed,
+            )
         seconds = time.perf_counter() - started
         for run in result.runs:
             scores = " ".join(f"{k}={v}" for k, v in run.scores.items())
-            print(f"{name} seed {run.seed}: SCS {100 * run.scs:.1f}% [{scores}] "
-                  f"{run.seconds:.1f}s {run.usage.prompt_tokens}+{run.usage.completion_tokens} "
-                  f"tokens, {run.usage.calls} call(s)")
+            print(
+                f"{name} seed {run.seed}: SCS {100 * run.scs:.1f}% [{scores}] "
+                f"{run.seconds:.1f}s {run.usage.prompt_tokens}+{run.usage.completion_tokens} "
+                f"tokens, {run.usage.calls} call(s)"
+            )
             for criterion, reason in run.reasons.items():
                 print(f"    {criterion}: {reason}")
         for line in result.failures:

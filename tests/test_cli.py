@@ -40,7 +40,8 @@ def test_an_arise_error_is_one_line_with_its_exit_code() -> None:
 
 
 def test_a_bug_writes_a_crash_report_instead_of_a_traceback(
-        tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
     monkeypatch.setenv("ARISE_CACHE_DIR", str(tmp_path))
     result = runner.invoke(demo, ["bug"])
     assert result.exit_code == CRASH_EXIT

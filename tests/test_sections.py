@@ -15,24 +15,33 @@ from arise.sections import (
     write_section,
 )
 
-SCRIPT = "\n".join([
-    "# a description",                          # 1
-    *write_section("HEADER", ["model m"]),      # 2-4
-    *write_section("BEHAVIOR", ["behavior B():", "    wait"]),  # 5-8
-    *write_section("SPAWN", ["adv = new Car"]),  # 9-11
-]) + "\n"
+SCRIPT = (
+    "\n".join(
+        [
+            "# a description",  # 1
+            *write_section("HEADER", ["model m"]),  # 2-4
+            *write_section("BEHAVIOR", ["behavior B():", "    wait"]),  # 5-8
+            *write_section("SPAWN", ["adv = new Car"]),  # 9-11
+        ]
+    )
+    + "\n"
+)
 
 
 def test_written_sections_are_read_back() -> None:
     assert [(s.name, s.first_line, s.last_line) for s in find_sections(SCRIPT)] == [
-        ("HEADER", 2, 4), ("BEHAVIOR", 5, 8), ("SPAWN", 9, 11)]
+        ("HEADER", 2, 4),
+        ("BEHAVIOR", 5, 8),
+        ("SPAWN", 9, 11),
+    ]
     assert section_body(SCRIPT, "BEHAVIOR") == "behavior B():\n    wait"
     assert section_of_line(SCRIPT, 7) == "BEHAVIOR" and section_of_line(SCRIPT, 1) is None
 
 
 def test_replace_changes_only_the_body_and_drops_repeated_markers() -> None:
-    new = replace_section(SCRIPT, "behavior", "# BEGIN BEHAVIOR\nbehavior C():\n    wait\n"
-                                              "#  END   BEHAVIOR  \n")
+    new = replace_section(
+        SCRIPT, "behavior", "# BEGIN BEHAVIOR\nbehavior C():\n    wait\n#  END   BEHAVIOR  \n"
+    )
     assert new is not None
     assert new == SCRIPT.replace("behavior B():", "behavior C():")
     assert replace_section(SCRIPT, "MISC", "x = 1") is None
@@ -44,7 +53,9 @@ def test_missing_end_belongs_to_the_section_but_cannot_be_replaced() -> None:
     assert not section.closed and section.last_line == 3
     assert section_of_line(text, 3) == "BEHAVIOR"
     assert find_section(text, "BEHAVIOR") is None
-    assert replace_section(text, "BEHAVIOR", "z = 3") is None and section_body(text, "BEHAVIOR") == ""
+    assert (
+        replace_section(text, "BEHAVIOR", "z = 3") is None and section_body(text, "BEHAVIOR") == ""
+    )
 
 
 def test_nested_sections_map_lines_to_the_innermost() -> None:
@@ -56,21 +67,26 @@ def test_nested_sections_map_lines_to_the_innermost() -> None:
     # An END of the outer section closes it even when the inner one never closed.
     unclosed_inner = "# BEGIN A\n# BEGIN B\nx = 1\n# END A\ny = 2\n"
     assert [(s.name, s.last_line, s.closed) for s in find_sections(unclosed_inner)] == [
-        ("A", 4, True), ("B", 5, False)]
+        ("A", 4, True),
+        ("B", 5, False),
+    ]
 
 
-@pytest.mark.parametrize(("line", "expected"), [
-    ("# BEGIN BEHAVIOR", (MarkerKind.BEGIN, "BEHAVIOR")),
-    ("   #    BEGIN    BEHAVIOR   ", (MarkerKind.BEGIN, "BEHAVIOR")),
-    ("#END spawn", (MarkerKind.END, "SPAWN")),
-    ("# BEGIN Ego-Route", (MarkerKind.BEGIN, "EGO-ROUTE")),
-    ("# begin BEHAVIOR", None),  # the keywords are upper case
-    ("# End BEHAVIOR", None),
-    ("# end of the loop", None),
-    ("# BEGIN BEHAVIOR here", None),  # one word only
-    ("x = 1  # BEGIN BEHAVIOR", None),  # a marker is a whole line
-    ("# BEGIN", None),
-])
+@pytest.mark.parametrize(
+    ("line", "expected"),
+    [
+        ("# BEGIN BEHAVIOR", (MarkerKind.BEGIN, "BEHAVIOR")),
+        ("   #    BEGIN    BEHAVIOR   ", (MarkerKind.BEGIN, "BEHAVIOR")),
+        ("#END spawn", (MarkerKind.END, "SPAWN")),
+        ("# BEGIN Ego-Route", (MarkerKind.BEGIN, "EGO-ROUTE")),
+        ("# begin BEHAVIOR", None),  # the keywords are upper case
+        ("# End BEHAVIOR", None),
+        ("# end of the loop", None),
+        ("# BEGIN BEHAVIOR here", None),  # one word only
+        ("x = 1  # BEGIN BEHAVIOR", None),  # a marker is a whole line
+        ("# BEGIN", None),
+    ],
+)
 def test_marker_spelling(line: str, expected: tuple[MarkerKind, str] | None) -> None:
     marker = parse_marker(line)
     assert (None if marker is None else (marker.kind, marker.name)) == expected

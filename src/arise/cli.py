@@ -49,7 +49,9 @@ def write_crash_report(error: BaseException) -> Path:
         f"arise {__version__} crashed\n"
         f"command: {shlex.join(sys.argv)}\n"
         f"python: {sys.version.split()[0]} on {platform.platform()}\n\n"
-        + "".join(traceback.format_exception(error)), encoding="utf-8")
+        + "".join(traceback.format_exception(error)),
+        encoding="utf-8",
+    )
     return path
 
 
@@ -69,9 +71,12 @@ class AriseGroup(TyperGroup):
                 report = write_crash_report(error)
             except OSError:
                 raise error from None
-            errors.print(f"[red]arise crashed[/red] (a bug in arise): {escape(type(error).__name__)}"
-                         f": {escape(str(error))}\nThe details are in {escape(str(report))};"
-                         " please attach that file to a bug report.", highlight=False)
+            errors.print(
+                f"[red]arise crashed[/red] (a bug in arise): {escape(type(error).__name__)}"
+                f": {escape(str(error))}\nThe details are in {escape(str(report))};"
+                " please attach that file to a bug report.",
+                highlight=False,
+            )
             ctx.exit(CRASH_EXIT)
 
 

@@ -46,10 +46,13 @@ def _sandbox() -> list[Finding]:
             report = pool.sandbox()
     except AriseError as error:
         return [Finding("sandbox", Verdict.FAIL, f"no validator worker could start: {error}")]
-    required = "required for every run" if required_by_settings() else \
-        "not required (--require-sandbox or [sandbox] require = true to insist)"
+    required = (
+        "required for every run"
+        if required_by_settings()
+        else "not required (--require-sandbox or [sandbox] require = true to insist)"
+    )
     verdict = Verdict.OK if report.full else Verdict.FAIL
-    text = (f"{report.label}; Landlock ABI {report.landlock_abi}; {required}")
+    text = f"{report.label}; Landlock ABI {report.landlock_abi}; {required}"
     findings = [Finding("sandbox", verdict, text)]
     findings += [Finding("sandbox", Verdict.WARN, note) for note in report.notes]
     if kernel.missing and report.full:
@@ -70,13 +73,19 @@ def _model() -> list[Finding]:
     if model_files.is_installed(path):
         findings.append(Finding("model", Verdict.OK, f"embedded model installed: {path}"))
     else:
-        findings.append(Finding("model", Verdict.FAIL,
-                                f"embedded model missing; {model_files.how_to_get()}"))
+        findings.append(
+            Finding("model", Verdict.FAIL, f"embedded model missing; {model_files.how_to_get()}")
+        )
     try:
         import llama_cpp  # noqa: F401
     except ImportError:
-        findings.append(Finding("model", Verdict.FAIL, "llama-cpp-python is not installed "
-                                "(pip install 'arise[local]', or `make demo`)"))
+        findings.append(
+            Finding(
+                "model",
+                Verdict.FAIL,
+                "llama-cpp-python is not installed (pip install 'arise[local]', or `make demo`)",
+            )
+        )
     return findings
 
 
@@ -89,11 +98,22 @@ def _maps(map_dir: str | None) -> list[Finding]:
         return [Finding("maps", Verdict.FAIL, str(error))]
     names = registry.names()
     towns = [n for n in names if registry.entries[n].source == "map-dir"]
-    findings = [Finding("maps", Verdict.OK if names else Verdict.FAIL,
-                        f"{len(names)} available: {', '.join(names)}")]
+    findings = [
+        Finding(
+            "maps",
+            Verdict.OK if names else Verdict.FAIL,
+            f"{len(names)} available: {', '.join(names)}",
+        )
+    ]
     if not towns:
-        findings.append(Finding("maps", Verdict.WARN, "no CARLA towns: point --map-dir or "
-                                "ARISE_MAP_DIR at a folder of .xodr files to use them"))
+        findings.append(
+            Finding(
+                "maps",
+                Verdict.WARN,
+                "no CARLA towns: point --map-dir or "
+                "ARISE_MAP_DIR at a folder of .xodr files to use them",
+            )
+        )
     return findings
 
 
@@ -102,8 +122,13 @@ def _carla(host: str, port: int) -> list[Finding]:
 
     reason = unreachable_reason(host, port, 2.0)
     if reason:
-        return [Finding("carla", Verdict.WARN, f"{host}:{port} not reachable (offline mode "
-                        "works without it)")]
+        return [
+            Finding(
+                "carla",
+                Verdict.WARN,
+                f"{host}:{port} not reachable (offline mode works without it)",
+            )
+        ]
     return [Finding("carla", Verdict.OK, f"{host}:{port} answers")]
 
 
@@ -111,18 +136,26 @@ def _folders() -> list[Finding]:
     findings = []
     root = cache_dir()
     for folder in (root, root / "maps", root / "models"):
-        size = sum(f.stat().st_size for f in folder.rglob("*") if f.is_file()) \
-            if folder.is_dir() else 0
+        size = (
+            sum(f.stat().st_size for f in folder.rglob("*") if f.is_file())
+            if folder.is_dir()
+            else 0
+        )
         writable = os.access(folder if folder.exists() else root, os.W_OK)
-        findings.append(Finding("cache", Verdict.OK if writable else Verdict.FAIL,
-                                f"{folder} ({size / 1e6:.1f} MB"
-                                f"{'' if writable else ', NOT writable'})"))
+        findings.append(
+            Finding(
+                "cache",
+                Verdict.OK if writable else Verdict.FAIL,
+                f"{folder} ({size / 1e6:.1f} MB{'' if writable else ', NOT writable'})",
+            )
+        )
     free = shutil.disk_usage(root).free
     if free < 2 * 1024**3:
         findings.append(Finding("cache", Verdict.WARN, f"only {free / 1e9:.1f} GB free"))
     config = config_path()
-    findings.append(Finding("config", Verdict.OK,
-                            f"{config} ({'present' if config.exists() else 'absent'})"))
+    findings.append(
+        Finding("config", Verdict.OK, f"{config} ({'present' if config.exists() else 'absent'})")
+    )
     return findings
 
 
@@ -141,12 +174,19 @@ def doctor_command(
     carla_host: Annotated[str, typer.Option(help="CARLA server host.")] = "127.0.0.1",
     carla_port: Annotated[int, typer.Option(help="CARLA server port.")] = 2000,
 ) -> None:
-    findings = [*_sandbox(), *_model(), *_maps(map_dir), *_carla(carla_host, carla_port),
-                *_folders()]
+    findings = [
+        *_sandbox(),
+        *_model(),
+        *_maps(map_dir),
+        *_carla(carla_host, carla_port),
+        *_folders(),
+    ]
     colour = {Verdict.OK: "green", Verdict.WARN: "yellow", Verdict.FAIL: "bold red"}
     for finding in findings:
-        console.print(f"[{colour[finding.verdict]}]{finding.verdict.value:>4}[/] "
-                      f"{finding.topic:<8} {escape(finding.text)}")
+        console.print(
+            f"[{colour[finding.verdict]}]{finding.verdict.value:>4}[/] "
+            f"{finding.topic:<8} {escape(finding.text)}"
+        )
     failed = [f for f in findings if f.verdict is Verdict.FAIL]
     console.print("\nready" if not failed else f"\n{len(failed)} problem(s) to fix")
     raise typer.Exit(1 if failed else 0)

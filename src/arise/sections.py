@@ -86,8 +86,7 @@ def find_sections(text: str) -> list[Section]:
                 _, start = open_sections.pop(index)
                 found.append(Section(marker.name, start, number))
                 break
-    found.extend(Section(name, start, len(lines), closed=False)
-                 for name, start in open_sections)
+    found.extend(Section(name, start, len(lines), closed=False) for name, start in open_sections)
     return sorted(found, key=lambda s: (s.first_line, -s.last_line))
 
 
@@ -113,7 +112,7 @@ def section_body(text: str, name: str) -> str:
     section = find_section(text, name)
     if section is None:
         return ""
-    return "\n".join(text.splitlines()[section.first_line: section.last_line - 1])
+    return "\n".join(text.splitlines()[section.first_line : section.last_line - 1])
 
 
 def replace_section(text: str, name: str, body: str) -> str | None:
@@ -125,7 +124,10 @@ def replace_section(text: str, name: str, body: str) -> str | None:
         return None
     wanted = name.upper()
     lines = text.splitlines(keepends=True)
-    body_lines = [line for line in body.strip("\n").split("\n")
-                  if (marker := parse_marker(line)) is None or marker.name != wanted]
+    body_lines = [
+        line
+        for line in body.strip("\n").split("\n")
+        if (marker := parse_marker(line)) is None or marker.name != wanted
+    ]
     new_body = "".join(f"{line}\n" for line in body_lines)
-    return "".join(lines[: section.first_line]) + new_body + "".join(lines[section.last_line - 1:])
+    return "".join(lines[: section.first_line]) + new_body + "".join(lines[section.last_line - 1 :])

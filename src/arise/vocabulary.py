@@ -31,13 +31,41 @@ class AdversaryType(StrEnum):
 #: Classes an adversary may have (the scenic_class of each AdversaryType, in order).
 ADVERSARY_CLASSES: tuple[str, ...] = tuple(kind.scenic_class for kind in AdversaryType)
 #: Classes of road users in CARLA's Scenic model (and in our offline world model).
-ACTOR_CLASSES: tuple[str, ...] = ("Car", "NPCCar", "Truck", "Van", "Bus", "Motorcycle",
-                                  "Bicycle", "Pedestrian")
+ACTOR_CLASSES: tuple[str, ...] = (
+    "Car",
+    "NPCCar",
+    "Truck",
+    "Van",
+    "Bus",
+    "Motorcycle",
+    "Bicycle",
+    "Pedestrian",
+)
 #: Static objects of CARLA's Scenic model.
 PROP_CLASSES: tuple[str, ...] = (
-    "Trash", "Cone", "Debris", "VendingMachine", "Chair", "BusStop", "Advertisement",
-    "Garbage", "Container", "Table", "Barrier", "PlantPot", "Mailbox", "Gnome", "CreasedBox",
-    "Case", "Box", "Bench", "Barrel", "ATM", "Kiosk", "IronPlate", "TrafficWarning",
+    "Trash",
+    "Cone",
+    "Debris",
+    "VendingMachine",
+    "Chair",
+    "BusStop",
+    "Advertisement",
+    "Garbage",
+    "Container",
+    "Table",
+    "Barrier",
+    "PlantPot",
+    "Mailbox",
+    "Gnome",
+    "CreasedBox",
+    "Case",
+    "Box",
+    "Bench",
+    "Barrel",
+    "ATM",
+    "Kiosk",
+    "IronPlate",
+    "TrafficWarning",
 )
 #: Scenic's own classes a script may create.
 POINT_CLASSES: tuple[str, ...] = ("Object", "Point", "OrientedPoint")
@@ -65,8 +93,16 @@ class RelativePosition(StrEnum):  # where the adversary starts, seen from the eg
 
 
 #: Features a map may have and a knowledge-base entry may need.
-MAP_FEATURES: tuple[str, ...] = ("straight", "multilane", "sidewalk", "intersection4",
-                                 "tjunction", "signalized", "highway", "curve")
+MAP_FEATURES: tuple[str, ...] = (
+    "straight",
+    "multilane",
+    "sidewalk",
+    "intersection4",
+    "tjunction",
+    "signalized",
+    "highway",
+    "curve",
+)
 
 # -- what the ego does ----------------------------------------------------------------------
 
@@ -81,16 +117,44 @@ class EgoManeuver(StrEnum):
 # -- weather (CARLA 0.9.16) -----------------------------------------------------------------
 
 WEATHER_PRESETS: tuple[str, ...] = (
-    "ClearNoon", "CloudyNoon", "WetNoon", "WetCloudyNoon", "SoftRainNoon", "MidRainyNoon",
-    "HardRainNoon", "ClearSunset", "CloudySunset", "WetSunset", "WetCloudySunset",
-    "SoftRainSunset", "MidRainSunset", "HardRainSunset", "ClearNight", "CloudyNight",
-    "WetNight", "WetCloudyNight", "SoftRainNight", "MidRainyNight", "HardRainNight",
-    "DustStorm", "Default",
+    "ClearNoon",
+    "CloudyNoon",
+    "WetNoon",
+    "WetCloudyNoon",
+    "SoftRainNoon",
+    "MidRainyNoon",
+    "HardRainNoon",
+    "ClearSunset",
+    "CloudySunset",
+    "WetSunset",
+    "WetCloudySunset",
+    "SoftRainSunset",
+    "MidRainSunset",
+    "HardRainSunset",
+    "ClearNight",
+    "CloudyNight",
+    "WetNight",
+    "WetCloudyNight",
+    "SoftRainNight",
+    "MidRainyNight",
+    "HardRainNight",
+    "DustStorm",
+    "Default",
 )
 WEATHER_FIELDS: tuple[str, ...] = (
-    "cloudiness", "precipitation", "precipitation_deposits", "wind_intensity",
-    "sun_azimuth_angle", "sun_altitude_angle", "fog_density", "fog_distance", "fog_falloff",
-    "wetness", "scattering_intensity", "mie_scattering_scale", "rayleigh_scattering_scale",
+    "cloudiness",
+    "precipitation",
+    "precipitation_deposits",
+    "wind_intensity",
+    "sun_azimuth_angle",
+    "sun_altitude_angle",
+    "fog_density",
+    "fog_distance",
+    "fog_falloff",
+    "wetness",
+    "scattering_intensity",
+    "mie_scattering_scale",
+    "rayleigh_scattering_scale",
     "dust_storm",
 )
 DEFAULT_WEATHER = "ClearNoon"

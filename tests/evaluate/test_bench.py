@@ -32,14 +32,23 @@ runner = CliRunner()
 @pytest.fixture()
 def prompts_and_cassette(tmp_path: Path) -> tuple[Path, Path]:
     prompts = tmp_path / "prompts.jsonl"
-    rows = [{"id": "cyclist-brakes", "category": "vehicle_passing",
-             "description": CASES["first_try"].description},
-            {"id": "left-turn", "category": "unprotected_left_turn",
-             "description": CASES["single_pass"].description}]
+    rows = [
+        {
+            "id": "cyclist-brakes",
+            "category": "vehicle_passing",
+            "description": CASES["first_try"].description,
+        },
+        {
+            "id": "left-turn",
+            "category": "unprotected_left_turn",
+            "description": CASES["single_pass"].description,
+        },
+    ]
     prompts.write_text("".join(json.dumps(row) + "\n" for row in rows))
     cassette = tmp_path / "both.jsonl"
-    cassette.write_text(CASES["first_try"].cassette.read_text()
-                        + CASES["single_pass"].cassette.read_text())
+    cassette.write_text(
+        CASES["first_try"].cassette.read_text() + CASES["single_pass"].cassette.read_text()
+    )
     return prompts, cassette
 
 
@@ -50,13 +59,24 @@ def _rows(database: Path) -> list[tuple[str, str, str]]:
 
 @pytest.mark.slow
 def test_a_killed_benchmark_resumes_without_redoing_finished_runs(
-        tmp_path: Path, prompts_and_cassette: tuple[Path, Path]) -> None:
+    tmp_path: Path, prompts_and_cassette: tuple[Path, Path]
+) -> None:
     prompts, cassette = prompts_and_cassette
     out = tmp_path / "bench"
-    command = [sys.executable, "-m", "arise", "bench", str(prompts), "--out", str(out),
-               "--replay", str(cassette)]
-    process = subprocess.Popen(command, start_new_session=True, stdout=subprocess.DEVNULL,
-                               stderr=subprocess.DEVNULL)
+    command = [
+        sys.executable,
+        "-m",
+        "arise",
+        "bench",
+        str(prompts),
+        "--out",
+        str(out),
+        "--replay",
+        str(cassette),
+    ]
+    process = subprocess.Popen(
+        command, start_new_session=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL
+    )
     database = out / "bench.sqlite"
     deadline = time.monotonic() + 240
     try:
@@ -69,8 +89,9 @@ def test_a_killed_benchmark_resumes_without_redoing_finished_runs(
         process.wait()
     first = _rows(database)
     assert len(first) == 1, "the kill should land between the two runs"
-    result = runner.invoke(app, ["bench", str(prompts), "--out", str(out), "--replay",
-                                 str(cassette)])
+    result = runner.invoke(
+        app, ["bench", str(prompts), "--out", str(out), "--replay", str(cassette)]
+    )
     assert result.exit_code == 0, result.output
     assert "1 run(s) to do, 1 already" in result.output
     after = _rows(database)
@@ -84,18 +105,24 @@ def test_a_killed_benchmark_resumes_without_redoing_finished_runs(
     assert all(r.conformity and r.conformity["score"] is not None for r in runs)
     assert all(r.criticality and r.criticality["min_distance"] is not None for r in runs)
     # Everything done: a third call has nothing to do.
-    again = runner.invoke(app, ["bench", str(prompts), "--out", str(out), "--replay",
-                                str(cassette)])
+    again = runner.invoke(
+        app, ["bench", str(prompts), "--out", str(out), "--replay", str(cassette)]
+    )
     assert again.exit_code == 0 and "0 run(s) to do, 2 already" in again.output
 
 
 @pytest.mark.slow
-def test_ray_executor_on_a_local_instance(tmp_path: Path,
-                                          prompts_and_cassette: tuple[Path, Path]) -> None:
+def test_ray_executor_on_a_local_instance(
+    tmp_path: Path, prompts_and_cassette: tuple[Path, Path]
+) -> None:
     pytest.importorskip("ray")
     prompts, cassette = prompts_and_cassette
-    config = BenchConfig(prompts=read_prompts(prompts), executor="ray", workers=2,
-                         base=GenerateOptions(replay=str(cassette)))
+    config = BenchConfig(
+        prompts=read_prompts(prompts),
+        executor="ray",
+        workers=2,
+        base=GenerateOptions(replay=str(cassette)),
+    )
     with BenchStore(tmp_path / "bench.sqlite") as store:
         finished = run_bench(config, store, tmp_path)
         stored = store.runs()
@@ -128,12 +155,19 @@ def test_judge_pass_scores_finished_runs_later(tmp_path: Path) -> None:
     # The judge cassette was recorded from the embedded Qwen2.5-Coder-1.5B with
     # `arise judge ... --record` on the script this replayed generation writes.
     prompts = tmp_path / "prompts.jsonl"
-    prompts.write_text(json.dumps({"id": "ft", "category": "cyclist",
-                                   "description": CASES["first_try"].description}) + "\n")
+    prompts.write_text(
+        json.dumps(
+            {"id": "ft", "category": "cyclist", "description": CASES["first_try"].description}
+        )
+        + "\n"
+    )
     cassette = tmp_path / "both.jsonl"
-    cassette.write_text(CASES["first_try"].cassette.read_text() + (
-        Path(__file__).resolve().parents[1] / "cassettes" / "judge" / "bench_first_try.jsonl"
-    ).read_text())
+    cassette.write_text(
+        CASES["first_try"].cassette.read_text()
+        + (
+            Path(__file__).resolve().parents[1] / "cassettes" / "judge" / "bench_first_try.jsonl"
+        ).read_text()
+    )
     out = tmp_path / "bench"
     command = ["bench", str(prompts), "--out", str(out), "--replay", str(cassette)]
     assert runner.invoke(app, command).exit_code == 0
@@ -145,7 +179,14 @@ def test_judge_pass_scores_finished_runs_later(tmp_path: Path) -> None:
         [record] = store.runs()
     assert record.judge is not None and record.scs is not None
     names = {criterion["name"] for criterion in record.judge["criteria"]}
-    assert names == {"adversary_type", "behavior", "geometry", "weather", "participants",
-                     "requirements", "spawn"}
+    assert names == {
+        "adversary_type",
+        "behavior",
+        "geometry",
+        "weather",
+        "participants",
+        "requirements",
+        "spawn",
+    }
     assert record.scs == pytest.approx(sum(c["score"] for c in record.judge["criteria"]) / 70)
     assert "| SCS | arise | 0 |" in (out / "report" / "report.md").read_text()

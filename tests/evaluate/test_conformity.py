@@ -17,10 +17,17 @@ REPO = Path(__file__).resolve().parents[2]
 EXAMPLE = REPO / "examples" / "pedestrian_crossing.scenic"
 
 TRUE_SPEC = dict(
-    adversary_type="pedestrian", behavior="crosses the road in front of the ego",
-    road_type="straight_road", ego_maneuver="go_straight", geometry="straight road",
-    spawn_position="crossing_road_from_right", spawn="on the right sidewalk ahead",
-    participants=[], weather="ClearNoon", requirements=[])
+    adversary_type="pedestrian",
+    behavior="crosses the road in front of the ego",
+    road_type="straight_road",
+    ego_maneuver="go_straight",
+    geometry="straight road",
+    spawn_position="crossing_road_from_right",
+    spawn="on the right sidewalk ahead",
+    participants=[],
+    weather="ClearNoon",
+    requirements=[],
+)
 
 
 @pytest.fixture(scope="module")
@@ -39,23 +46,35 @@ def test_the_true_spec_conforms(example_run: CheckResult) -> None:
     conformity = check_conformity(_spec(), example_run.simulation)
     assert conformity.mismatches == [] and conformity.score == 1.0
     names = {c.name for c in conformity.checks}
-    assert {"adversary_type", "ego_maneuver", "road_type", "spawn_position",
-            "reaches_ego_path", "weather", "participants"} <= names
+    assert {
+        "adversary_type",
+        "ego_maneuver",
+        "road_type",
+        "spawn_position",
+        "reaches_ego_path",
+        "weather",
+        "participants",
+    } <= names
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize(("changes", "wrong"), [
-    ({"adversary_type": "car"}, "adversary_type"),
-    ({"spawn_position": "crossing_road_from_left"}, "spawn_position"),
-    ({"weather": "HardRainNight"}, "weather"),
-    ({"ego_maneuver": "turn_left", "road_type": "intersection"}, "ego_maneuver"),
-    ({"participants": ["parked van on the right"]}, "participants"),
-])
-def test_planted_mismatches_are_caught(example_run: CheckResult, changes: dict[str, object],
-                                       wrong: str) -> None:
+@pytest.mark.parametrize(
+    ("changes", "wrong"),
+    [
+        ({"adversary_type": "car"}, "adversary_type"),
+        ({"spawn_position": "crossing_road_from_left"}, "spawn_position"),
+        ({"weather": "HardRainNight"}, "weather"),
+        ({"ego_maneuver": "turn_left", "road_type": "intersection"}, "ego_maneuver"),
+        ({"participants": ["parked van on the right"]}, "participants"),
+    ],
+)
+def test_planted_mismatches_are_caught(
+    example_run: CheckResult, changes: dict[str, object], wrong: str
+) -> None:
     conformity = check_conformity(_spec(**changes), example_run.simulation)
-    assert [m.split(":")[0] for m in conformity.mismatches][:1] == [wrong] or \
-        wrong in [m.split(":")[0] for m in conformity.mismatches]
+    assert [m.split(":")[0] for m in conformity.mismatches][:1] == [wrong] or wrong in [
+        m.split(":")[0] for m in conformity.mismatches
+    ]
     assert conformity.score is not None and conformity.score < 1.0
 
 
@@ -68,14 +87,18 @@ def test_criticality_reads_the_adversary_pair(example_run: CheckResult) -> None:
 
 @pytest.mark.slow
 def test_semantic_gate_fails_a_running_script_that_says_something_else(
-        example_run: CheckResult, validator_pool) -> None:
+    example_run: CheckResult, validator_pool
+) -> None:
     with Generator(GenerateOptions(semantic_gate=True), pool=validator_pool) as generator:
         passed = semantic_gate(example_run, generator.conformity_of(_spec(), example_run))
-        failed = semantic_gate(example_run, generator.conformity_of(
-            _spec(adversary_type="truck", weather="ClearNight"), example_run))
+        failed = semantic_gate(
+            example_run,
+            generator.conformity_of(
+                _spec(adversary_type="truck", weather="ClearNight"), example_run
+            ),
+        )
     assert passed.ok
     assert not failed.ok and failed.diagnostic is not None
     assert failed.diagnostic.stage is Stage.SEMANTIC
     assert failed.diagnostic.section == "SPAWN"
-    assert "adversary_type" in failed.diagnostic.message and "weather" in \
-        failed.diagnostic.message
+    assert "adversary_type" in failed.diagnostic.message and "weather" in failed.diagnostic.message

@@ -25,8 +25,16 @@ def test_a_dev_set_file_is_a_prompt_file_with_truth() -> None:
 
 def test_a_bad_truth_is_refused_with_its_line(tmp_path: Path) -> None:
     bad = tmp_path / "bad.jsonl"
-    bad.write_text(json.dumps({"id": "x", "text": "A car turns.",
-                               "truth": {"actors": [{"class": "Lorry", "count": 1}]}}) + "\n")
+    bad.write_text(
+        json.dumps(
+            {
+                "id": "x",
+                "text": "A car turns.",
+                "truth": {"actors": [{"class": "Lorry", "count": 1}]},
+            }
+        )
+        + "\n"
+    )
     with pytest.raises(DevsetError, match=r"bad.jsonl:1.*Lorry"):
         read_prompts(bad)
 
@@ -36,8 +44,13 @@ def test_tasks_carry_the_truth_and_records_keep_the_fidelity() -> None:
     config = BenchConfig(prompts=prompts, modes=[Mode.ARISE], temperatures=[0.0], runs=1)
     tasks = plan(config)
     assert [t.truth for t in tasks] == [p.truth for p in prompts]
-    record = RunRecord(task=tasks[0], status="executed", first_pass_ok=True, repairs=0,
-                       fidelity={"executed": True, "score": 0.75, "verdicts": []})
+    record = RunRecord(
+        task=tasks[0],
+        status="executed",
+        first_pass_ok=True,
+        repairs=0,
+        fidelity={"executed": True, "score": 0.75, "verdicts": []},
+    )
     again = RunRecord.from_dict(json.loads(json.dumps(record.as_dict())))
     assert again.task.truth == tasks[0].truth and again.fidelity_score == 0.75
     assert METRICS["fidelity"]([again]) == 0.75
@@ -45,9 +58,19 @@ def test_tasks_carry_the_truth_and_records_keep_the_fidelity() -> None:
 
 
 def test_old_rows_without_truth_still_load() -> None:
-    row = {"task": {"prompt_id": "p", "category": "c", "description": "d", "mode": "arise",
-                    "temperature": 0.0, "run_index": 0},
-           "status": "executed", "first_pass_ok": True, "repairs": 0}
+    row = {
+        "task": {
+            "prompt_id": "p",
+            "category": "c",
+            "description": "d",
+            "mode": "arise",
+            "temperature": 0.0,
+            "run_index": 0,
+        },
+        "status": "executed",
+        "first_pass_ok": True,
+        "repairs": 0,
+    }
     record = RunRecord.from_dict(row)
     assert record.task.truth is None and record.fidelity is None
     assert isinstance(record.task, BenchTask)

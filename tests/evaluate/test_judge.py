@@ -93,14 +93,17 @@ def test_weights_parse_and_default_to_one() -> None:
     assert parsed["spawn"] == 1.0 and list(parsed) == list(CRITERIA)
 
 
-@pytest.mark.parametrize(("text", "words"), [
-    ("speed=2", "unknown criterion 'speed'"),
-    ("behavior=-1", "finite number >= 0"),
-    ("behavior=nan", "finite number >= 0"),
-    ("behavior=lots", "must be a number"),
-    ("behavior", "NAME=NUMBER"),
-    (",".join(f"{name}=0" for name in CRITERIA), "all zero"),
-])
+@pytest.mark.parametrize(
+    ("text", "words"),
+    [
+        ("speed=2", "unknown criterion 'speed'"),
+        ("behavior=-1", "finite number >= 0"),
+        ("behavior=nan", "finite number >= 0"),
+        ("behavior=lots", "must be a number"),
+        ("behavior", "NAME=NUMBER"),
+        (",".join(f"{name}=0" for name in CRITERIA), "all zero"),
+    ],
+)
 def test_bad_weights_are_one_clear_error(text: str, words: str) -> None:
     with pytest.raises(WeightsError, match=words) as caught:
         parse_weights(text)
@@ -128,14 +131,14 @@ def test_compact_script_keeps_code_and_section_starts_only() -> None:
     assert "steps off the right" not in compact, "the description in the header comment goes"
     assert "# kb:" not in compact and "# END" not in compact and "model scenic" not in compact
     assert "localPath" not in compact and "param carla_map = 'arise_straight'" in compact
-    for section in ("HEADER", "WEATHER", "BEHAVIOR", "GEOMETRY", "SPAWN", "MISC",
-                    "REQUIREMENTS"):
+    for section in ("HEADER", "WEATHER", "BEHAVIOR", "GEOMETRY", "SPAWN", "MISC", "REQUIREMENTS"):
         assert f"# BEGIN {section}" in compact
     assert "adversary = new Pedestrian" in compact and "\n\n" not in compact
     assert len(compact) < len(SCRIPT) * 0.8
     # inline comments without quotes go; a '#' inside a string stays
     assert compact_script("pass  # arise: dropped `require x`\nname = 'a # b'") == (
-        "pass\nname = 'a # b'")
+        "pass\nname = 'a # b'"
+    )
 
 
 def test_messages_put_the_shared_part_first_and_the_pair_last() -> None:
@@ -167,8 +170,9 @@ def answer(scores: dict[str, int], reason: str = "matches") -> str:
 
 def test_judge_script_turns_the_answer_into_a_judgement() -> None:
     model = Scripted([answer(SCORES, reason="x " * 200)])
-    judgement = judge_script(PEDESTRIAN, SCRIPT, model, temperature=0.3, seed=5,
-                             weights={"adversary_type": 2})
+    judgement = judge_script(
+        PEDESTRIAN, SCRIPT, model, temperature=0.3, seed=5, weights={"adversary_type": 2}
+    )
     assert judgement.scores == SCORES and judgement.model == "scripted-1"
     assert judgement.scs == pytest.approx(compute_scs(SCORES, {"adversary_type": 2}))
     assert all(len(r) <= REASON_CHARS for r in judgement.reasons.values()), "long reasons cut"
@@ -234,8 +238,14 @@ def test_consistency_leaves_out_failed_repeats_and_raises_when_all_fail() -> Non
 def replayed(name: str) -> list[Judgement]:
     case = CASES[name]
     with get_provider(replay=case.cassette) as llm:
-        result = consistency(case.description, case.script_text(), llm, repeat=case.repeat,
-                             temperature=case.temperature, seed=case.seed)
+        result = consistency(
+            case.description,
+            case.script_text(),
+            llm,
+            repeat=case.repeat,
+            temperature=case.temperature,
+            seed=case.seed,
+        )
     assert not result.failures
     return result.runs
 
@@ -289,14 +299,17 @@ def test_cli_help_has_examples() -> None:
     assert "report.json" in result.output
 
 
-@pytest.mark.parametrize(("args", "words"), [
-    (["x", "missing.scenic"], "no such script"),
-    (["", str(CASES["good"].script)], "description is empty"),
-    (["-", str(CASES["good"].script)], "only a folder"),
-    ([PEDESTRIAN, str(CASES["good"].script), "--weights", "speed=2"], "unknown criterion"),
-    ([PEDESTRIAN, str(CASES["good"].script), "--repeat", "0"], "at least 1"),
-    (["-", str(CHILD_DIR.parent)], "without scenario.scenic"),
-])
+@pytest.mark.parametrize(
+    ("args", "words"),
+    [
+        (["x", "missing.scenic"], "no such script"),
+        (["", str(CASES["good"].script)], "description is empty"),
+        (["-", str(CASES["good"].script)], "only a folder"),
+        ([PEDESTRIAN, str(CASES["good"].script), "--weights", "speed=2"], "unknown criterion"),
+        ([PEDESTRIAN, str(CASES["good"].script), "--repeat", "0"], "at least 1"),
+        (["-", str(CHILD_DIR.parent)], "without scenario.scenic"),
+    ],
+)
 def test_cli_user_mistakes_exit_2_with_one_line(args: list[str], words: str) -> None:
     result = invoke(*args)
     assert result.exit_code == 2, result.output
@@ -326,8 +339,15 @@ def test_cli_prints_the_table_and_json_from_a_recorded_judgement() -> None:
     assert table.exit_code == 0, table.output
     assert "SCS" in table.output and "%" in table.output
     assert all(name in table.output for name in CRITERIA)
-    as_json = invoke(case.description, str(case.script), "--replay", str(case.cassette),
-                     "--json", "--weights", "adversary_type=2")
+    as_json = invoke(
+        case.description,
+        str(case.script),
+        "--replay",
+        str(case.cassette),
+        "--json",
+        "--weights",
+        "adversary_type=2",
+    )
     assert as_json.exit_code == 0, as_json.output
     data = json.loads(as_json.output)
     scores = {c["name"]: c["score"] for c in data["criteria"]}
@@ -345,8 +365,16 @@ def test_cli_reads_a_generation_folder_and_its_description() -> None:
 
 def test_cli_repeat_shows_the_spread() -> None:
     case = CASES["repeat"]
-    args = [case.description, str(case.script), "--replay", str(case.cassette), "--repeat", "3",
-            "--temperature", "0.7"]
+    args = [
+        case.description,
+        str(case.script),
+        "--replay",
+        str(case.cassette),
+        "--repeat",
+        "3",
+        "--temperature",
+        "0.7",
+    ]
     result = invoke(*args)
     assert result.exit_code == 0, result.output
     assert "population std" in result.output and "pp" in result.output

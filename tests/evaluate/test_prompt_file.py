@@ -19,8 +19,9 @@ def test_the_dev_set_reads_with_categories() -> None:
 
 def test_csv_and_txt(tmp_path: Path) -> None:
     csv_file = tmp_path / "p.csv"
-    csv_file.write_text('id,category,description\nx1,right_turn,"The ego turns right, '
-                        'a car crosses."\n')
+    csv_file.write_text(
+        'id,category,description\nx1,right_turn,"The ego turns right, a car crosses."\n'
+    )
     [prompt] = read_prompts(csv_file)
     assert (prompt.id, prompt.category) == ("x1", "right_turn")
     assert prompt.description == "The ego turns right, a car crosses."
@@ -31,16 +32,21 @@ def test_csv_and_txt(tmp_path: Path) -> None:
     assert first.id != second.id
 
 
-@pytest.mark.parametrize(("name", "text", "words"), [
-    ("p.jsonl", '{"description": "ok"}\n{not json\n', "p.jsonl:2"),
-    ("p.jsonl", '{"category": "a"}\n', "no description"),
-    ("p.csv", "text\nhello\n", "'description' column"),
-    ("p.txt", "\n# only a comment\n", "no prompts"),
-    ("p.jsonl", '{"id": "a", "description": "x"}\n{"id": "a", "description": "y"}\n',
-     "used twice"),
-])
-def test_broken_files_name_the_problem(tmp_path: Path, name: str, text: str,
-                                       words: str) -> None:
+@pytest.mark.parametrize(
+    ("name", "text", "words"),
+    [
+        ("p.jsonl", '{"description": "ok"}\n{not json\n', "p.jsonl:2"),
+        ("p.jsonl", '{"category": "a"}\n', "no description"),
+        ("p.csv", "text\nhello\n", "'description' column"),
+        ("p.txt", "\n# only a comment\n", "no prompts"),
+        (
+            "p.jsonl",
+            '{"id": "a", "description": "x"}\n{"id": "a", "description": "y"}\n',
+            "used twice",
+        ),
+    ],
+)
+def test_broken_files_name_the_problem(tmp_path: Path, name: str, text: str, words: str) -> None:
     path = tmp_path / name
     path.write_text(text)
     with pytest.raises(PromptFileError, match=words):

@@ -20,23 +20,31 @@ from tests.fakes import FakeValidator, ScriptedProvider, passed
 from tests.generate_cases import FAULTY_KB
 
 DESCRIPTION = "A pedestrian steps off the right sidewalk in front of the ego car."
-SPEC = ScenarioSpec.model_validate({
-    "adversary_type": "pedestrian", "behavior": "steps off the sidewalk and crosses",
-    "road_type": "straight_road", "ego_maneuver": "go_straight",
-    "geometry": "a straight road", "spawn_position": "crossing_road_from_right",
-    "spawn": "on the right sidewalk ahead"})
+SPEC = ScenarioSpec.model_validate(
+    {
+        "adversary_type": "pedestrian",
+        "behavior": "steps off the sidewalk and crosses",
+        "road_type": "straight_road",
+        "ego_maneuver": "go_straight",
+        "geometry": "a straight road",
+        "spawn_position": "crossing_road_from_right",
+        "spawn": "on the right sidewalk ahead",
+    }
+)
 
 
 @pytest.fixture(scope="module")
 def generator() -> Iterator[Generator]:
     model = UsageLedger(ScriptedProvider())
-    with Generator(GenerateOptions(retrieval="bm25"), provider=model,
-                   checker=FakeValidator()) as built:
+    with Generator(
+        GenerateOptions(retrieval="bm25"), provider=model, checker=FakeValidator()
+    ) as built:
         yield built
 
 
-def _script(generator: Generator, *replies: str, results: list[CheckResult] | None = None
-            ) -> ScriptedProvider:
+def _script(
+    generator: Generator, *replies: str, results: list[CheckResult] | None = None
+) -> ScriptedProvider:
     """Give the generator's model these replies and its validator these results."""
     model = generator.provider.unwrap()
     assert isinstance(model, ScriptedProvider)
@@ -45,8 +53,9 @@ def _script(generator: Generator, *replies: str, results: list[CheckResult] | No
     return model
 
 
-def test_a_model_that_fails_mid_run_ends_it_as_a_provider_error(generator: Generator,
-                                                                 tmp_path: Path) -> None:
+def test_a_model_that_fails_mid_run_ends_it_as_a_provider_error(
+    generator: Generator, tmp_path: Path
+) -> None:
     # Extraction answers; the parameter tuning gets three replies that never fit its schema.
     model = _script(generator, SPEC.model_dump_json(), "{}", "{}", "{}")
     events: list[ProgressEvent] = []
@@ -57,7 +66,10 @@ def test_a_model_that_fails_mid_run_ends_it_as_a_provider_error(generator: Gener
     report = json.loads((tmp_path / "report.json").read_text())
     assert report["status"] == "provider_error" and report["spec"]["adversary_type"] == "pedestrian"
     assert [e.stage.value for e in events if isinstance(e, StageStarted)] == [
-        "extract", "retrieve", "assemble"]
+        "extract",
+        "retrieve",
+        "assemble",
+    ]
     assert isinstance(events[-1], RunFinished)
     assert event_dict(events[-1])["status"] == "provider_error"
 
@@ -72,17 +84,27 @@ def test_a_refused_description_asks_no_one(generator: Generator, tmp_path: Path)
 def _facts(adversary_kind: str) -> SimulationFacts:
     def trace(name: str, kind: str, x: float, ego: bool = False) -> AgentTrace:
         points = [TracePoint(step=i, x=x, y=float(i), heading=0.0, speed=1.0) for i in range(3)]
-        return AgentTrace(name=name, kind=kind, width=1.0, length=2.0, is_ego=ego,
-                          behavior=None if ego else "AdversaryBehavior", trajectory=points)
+        return AgentTrace(
+            name=name,
+            kind=kind,
+            width=1.0,
+            length=2.0,
+            is_ego=ego,
+            behavior=None if ego else "AdversaryBehavior",
+            trajectory=points,
+        )
 
-    return SimulationFacts(steps=3, timestep=0.1, termination_type="time",
-                           termination_reason="done", params={"weather": "ClearNoon"},
-                           agents=[trace("ego", "Car", 0.0, ego=True),
-                                   trace("adv", adversary_kind, -4.0)])
+    return SimulationFacts(
+        steps=3,
+        timestep=0.1,
+        termination_type="time",
+        termination_reason="done",
+        params={"weather": "ClearNoon"},
+        agents=[trace("ego", "Car", 0.0, ego=True), trace("adv", adversary_kind, -4.0)],
+    )
 
 
-def test_the_semantic_gate_fails_a_script_that_contradicts_the_spec(generator: Generator
-                                                                    ) -> None:
+def test_the_semantic_gate_fails_a_script_that_contradicts_the_spec(generator: Generator) -> None:
     wrong = passed().model_copy(update={"simulation": _facts("Car")})
     right = passed().model_copy(update={"simulation": _facts("Pedestrian")})
     _script(generator, results=[wrong, wrong, right])
@@ -132,7 +154,8 @@ def test_topk_is_the_number_of_candidates_kept(generator: Generator, tmp_path: P
     finally:
         generator.reconfigure(generator.options.model_copy(update={"topk": 10}))
     assert run.retrieval is not None
-    kept = {component.value: len(entries) for component, entries in
-            run.retrieval.candidates.items()}
+    kept = {
+        component.value: len(entries) for component, entries in run.retrieval.candidates.items()
+    }
     assert kept["geometry"] <= 2 and kept["spawn"] <= 2 and kept["behavior"] <= 2
     assert max(kept["geometry"], kept["spawn"], kept["behavior"]) == 2

@@ -65,11 +65,20 @@ def test_success_after_an_llm_repair_of_the_failing_section(tmp_path, validator_
     assert first.diagnostic.section == "BEHAVIOR"
     assert last.kind == "llm" and last.ok and last.llm_usage.calls == 1
     # Only the failing section changed.
-    changed = [line for line in last.diff.splitlines()
-               if line.startswith(("+", "-")) and not line.startswith(("+++", "---"))]
-    assert changed and all("SetWalking" in line or not line.strip("+- ") or "Action" in line
-                           or "behavior" in line or "while" in line or "take" in line
-                           for line in changed)
+    changed = [
+        line
+        for line in last.diff.splitlines()
+        if line.startswith(("+", "-")) and not line.startswith(("+++", "---"))
+    ]
+    assert changed and all(
+        "SetWalking" in line
+        or not line.strip("+- ")
+        or "Action" in line
+        or "behavior" in line
+        or "while" in line
+        or "take" in line
+        for line in changed
+    )
 
 
 @pytest.mark.slow
@@ -103,10 +112,15 @@ def test_bad_descriptions_are_refused_without_a_model(tmp_path) -> None:
 
 @pytest.mark.slow
 def test_rejected_simulations_are_resampled_within_the_spawn_budget(validator_pool) -> None:
-    text = (DATA / "base_crossing.scenic").read_text().replace(
-        "terminate when (distance to EgoSpawnPt) > 60",
-        "require always (distance from ego to EgoSpawnPt) < 10\n"
-        "terminate when (distance to EgoSpawnPt) > 60")
+    text = (
+        (DATA / "base_crossing.scenic")
+        .read_text()
+        .replace(
+            "terminate when (distance to EgoSpawnPt) > 60",
+            "require always (distance from ego to EgoSpawnPt) < 10\n"
+            "terminate when (distance to EgoSpawnPt) > 60",
+        )
+    )
     result = check_text(text, CheckOptions(seed=1, spawn_attempts=15), pool=validator_pool)
     assert result.ok and result.spawn_attempts_used > 1
     assert result.simulation_rejections and result.simulation_rejections[0].line == 30

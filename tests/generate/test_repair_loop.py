@@ -35,36 +35,55 @@ MAPS = {"plain": frozenset[str]()}
 
 def entry(entry_id: str, snippet: str, **fields: object) -> Entry:
     component = Component(entry_id.split(".")[0])
-    return Entry(id=entry_id, component=component, descriptions=[entry_id], snippet=snippet,
-                 **fields)  # type: ignore[arg-type]
+    return Entry(
+        id=entry_id, component=component, descriptions=[entry_id], snippet=snippet, **fields
+    )  # type: ignore[arg-type]
 
 
 GEOMETRY = entry("geometry.road", "ego = new Car", defines=["ego"])
-BEHAVIOR = entry("behavior.cross", "behavior AdversaryBehavior():\n    wait",
-                 defines=["AdversaryBehavior"])
+BEHAVIOR = entry(
+    "behavior.cross", "behavior AdversaryBehavior():\n    wait", defines=["AdversaryBehavior"]
+)
 
 
 def spawn(number: int, snippet: str | None = None) -> Entry:
-    return entry(f"spawn.s{number}",
-                 snippet or f"adv = new Pedestrian ahead of ego by {10 * number}",
-                 needs=["ego"], defines=["adv"])
+    return entry(
+        f"spawn.s{number}",
+        snippet or f"adv = new Pedestrian ahead of ego by {10 * number}",
+        needs=["ego"],
+        defines=["adv"],
+    )
 
 
-def setup(*spawns: Entry, provider: ScriptedProvider | None = None
-          ) -> tuple[Generation, Draft, RepairContext]:
+def setup(
+    *spawns: Entry, provider: ScriptedProvider | None = None
+) -> tuple[Generation, Draft, RepairContext]:
     spawns = spawns or (spawn(1), spawn(2))
     retrieval = Retrieval(
-        candidates={Component.GEOMETRY: [GEOMETRY], Component.SPAWN: list(spawns),
-                    Component.BEHAVIOR: [BEHAVIOR]},
-        chosen={Component.GEOMETRY: [GEOMETRY], Component.SPAWN: [spawns[0]],
-                Component.BEHAVIOR: [BEHAVIOR]},
-        map_name="plain")
+        candidates={
+            Component.GEOMETRY: [GEOMETRY],
+            Component.SPAWN: list(spawns),
+            Component.BEHAVIOR: [BEHAVIOR],
+        },
+        chosen={
+            Component.GEOMETRY: [GEOMETRY],
+            Component.SPAWN: [spawns[0]],
+            Component.BEHAVIOR: [BEHAVIOR],
+        },
+        map_name="plain",
+    )
     draft = assemble(retrieval, "Pedestrian", DESCRIPTION)
-    run = Generation(description=DESCRIPTION, options=GenerateOptions(), retrieval=retrieval,
-                     draft=draft)
-    context = RepairContext(description=DESCRIPTION, retrieval=retrieval, draft=draft,
-                            provider=provider, rules=RuleContext(adversary_class="Pedestrian"),
-                            maps=MAPS)
+    run = Generation(
+        description=DESCRIPTION, options=GenerateOptions(), retrieval=retrieval, draft=draft
+    )
+    context = RepairContext(
+        description=DESCRIPTION,
+        retrieval=retrieval,
+        draft=draft,
+        provider=provider,
+        rules=RuleContext(adversary_class="Pedestrian"),
+        maps=MAPS,
+    )
     return run, draft, context
 
 
@@ -75,22 +94,36 @@ def kinds(run: Generation) -> list[AttemptKind]:
 def test_first_try_needs_no_repair() -> None:
     run, draft, context = setup()
     events: list[ProgressEvent] = []
-    outcome = repair_loop(run, draft.script, FakeValidator([passed()]), context, max_repairs=3,
-                          emit=events.append)
+    outcome = repair_loop(
+        run, draft.script, FakeValidator([passed()]), context, max_repairs=3, emit=events.append
+    )
     assert outcome.status is RunStatus.EXECUTED and outcome.message is None
     assert kinds(run) == [AttemptKind.INITIAL] and run.first_pass_ok
     assert [event_dict(e) for e in events] == [
         {"event": "stage", "stage": "validate", "attempt": 0},
-        {"event": "attempt", "index": 0, "kind": "initial", "ok": True,
-         "detail": "assembled from the knowledge base"}]
+        {
+            "event": "attempt",
+            "index": 0,
+            "kind": "initial",
+            "ok": True,
+            "detail": "assembled from the knowledge base",
+        },
+    ]
 
 
 def test_a_rule_fixes_a_mechanical_error_without_the_model() -> None:
     model = ScriptedProvider()  # any call fails the test
-    run, draft, context = setup(spawn(1, "adv = new Pedestrain ahead of ego by 10"), spawn(2),
-                                provider=model)
-    typo = failed(Stage.COMPILE, "NameError", "name 'Pedestrain' is not defined", "SPAWN",
-                  line=9, hint="'Pedestrain' is not defined; did you mean Pedestrian?")
+    run, draft, context = setup(
+        spawn(1, "adv = new Pedestrain ahead of ego by 10"), spawn(2), provider=model
+    )
+    typo = failed(
+        Stage.COMPILE,
+        "NameError",
+        "name 'Pedestrain' is not defined",
+        "SPAWN",
+        line=9,
+        hint="'Pedestrain' is not defined; did you mean Pedestrian?",
+    )
     validator = FakeValidator([typo, passed()])
     outcome = repair_loop(run, draft.script, validator, context, max_repairs=3)
     assert outcome.status is RunStatus.EXECUTED
@@ -144,16 +177,25 @@ def test_a_model_repair_that_does_not_run_counts_and_two_failures_stop_asking() 
     assert kinds(run) == [AttemptKind.INITIAL, AttemptKind.LLM, AttemptKind.LLM]
     assert context.llm_failures == {"BEHAVIOR": 2} and len(model.requests) == 2
     assert outcome.status is RunStatus.FAILED
-    assert outcome.message == ("no repair left for: simulate line 6 [BEHAVIOR]: TypeError: "
-                               "bad behavior")
+    assert outcome.message == (
+        "no repair left for: simulate line 6 [BEHAVIOR]: TypeError: bad behavior"
+    )
 
 
 def test_a_semantic_mismatch_goes_straight_to_a_swap() -> None:
     model = ScriptedProvider()  # the model is not asked: numbers will not change who or where
     run, draft, context = setup(provider=model)
-    conformity = Conformity([ConformityCheck("spawn_position", "crossing_road_from_left",
-                                             "20 m ahead, 0.0 m left, moving same", False),
-                             ConformityCheck("weather", "ClearNoon", "ClearNoon", True)])
+    conformity = Conformity(
+        [
+            ConformityCheck(
+                "spawn_position",
+                "crossing_road_from_left",
+                "20 m ahead, 0.0 m left, moving same",
+                False,
+            ),
+            ConformityCheck("weather", "ClearNoon", "ClearNoon", True),
+        ]
+    )
     gated = semantic_gate(passed(), conformity)
     assert not gated.ok and gated.diagnostic is not None
     assert gated.diagnostic.stage is Stage.SEMANTIC and gated.diagnostic.section == "SPAWN"
@@ -170,12 +212,12 @@ def test_the_budget_is_spent_and_the_run_fails_with_the_last_error() -> None:
     overlap = failed(Stage.SAMPLE, "RejectionException", "too many rejections", "SPAWN")
     validator = FakeValidator([overlap] * 3)
     events: list[ProgressEvent] = []
-    outcome = repair_loop(run, draft.script, validator, context, max_repairs=2,
-                          emit=events.append)
+    outcome = repair_loop(run, draft.script, validator, context, max_repairs=2, emit=events.append)
     assert kinds(run) == [AttemptKind.INITIAL, AttemptKind.SWAP, AttemptKind.SWAP]
     assert outcome.status is RunStatus.FAILED
-    assert outcome.message == ("repair budget spent; last error: sample [SPAWN]: "
-                               "RejectionException: too many rejections")
+    assert outcome.message == (
+        "repair budget spent; last error: sample [SPAWN]: RejectionException: too many rejections"
+    )
     repairs = [e for e in events if isinstance(e, StageStarted) and e.stage is RunStage.REPAIR]
     assert [e.attempt for e in repairs] == [1, 2]
     assert all(e.error for e in repairs)
@@ -195,8 +237,14 @@ def test_a_provider_error_mid_loop_propagates_and_keeps_the_attempts() -> None:
     validator = FakeValidator([failed(Stage.SIMULATE, "TypeError", "bad", "BEHAVIOR")])
     saved: list[int] = []
     with pytest.raises(ProviderUnavailable, match="went away"):
-        repair_loop(run, draft.script, validator, context, max_repairs=3,
-                    on_attempt=lambda attempt: saved.append(attempt.index))
+        repair_loop(
+            run,
+            draft.script,
+            validator,
+            context,
+            max_repairs=3,
+            on_attempt=lambda attempt: saved.append(attempt.index),
+        )
     assert kinds(run) == [AttemptKind.INITIAL] and saved == [0]
     assert run.status is RunStatus.RUNNING, "the loop never sets the status"
 
@@ -215,18 +263,29 @@ def test_gate_refusals_and_the_header_are_never_sent_to_the_model() -> None:
 
 def test_a_rejection_names_the_section_when_the_diagnostic_does_not() -> None:
     run, draft, context = setup()
-    rejected = failed(Stage.SAMPLE, "RejectionException", "rejected", None,
-                      rejections=[Rejection(reason="requirement on line 3", count=9,
-                                            section="SPAWN")])
-    outcome = repair_loop(run, draft.script, FakeValidator([rejected, passed()]), context,
-                          max_repairs=1)
+    rejected = failed(
+        Stage.SAMPLE,
+        "RejectionException",
+        "rejected",
+        None,
+        rejections=[Rejection(reason="requirement on line 3", count=9, section="SPAWN")],
+    )
+    outcome = repair_loop(
+        run, draft.script, FakeValidator([rejected, passed()]), context, max_repairs=1
+    )
     assert outcome.status is RunStatus.EXECUTED
     assert run.attempts[1].detail == "spawn.s1 -> spawn.s2"
 
 
 def test_events_serialise_to_the_dicts_a_page_streams() -> None:
     assert event_dict(StageStarted(RunStage.REPAIR, attempt=2, error="x")) == {
-        "event": "stage", "stage": "repair", "attempt": 2, "error": "x"}
+        "event": "stage",
+        "stage": "repair",
+        "attempt": 2,
+        "error": "x",
+    }
     assert event_dict(RunFinished(RunStatus.FAILED, "failed: x")) == {
-        "event": "done", "status": "failed", "summary": "failed: x"}
-
+        "event": "done",
+        "status": "failed",
+        "summary": "failed: x",
+    }

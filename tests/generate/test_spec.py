@@ -17,13 +17,22 @@ def test_the_extraction_schema_is_unchanged() -> None:
     digest = hashlib.sha256(schema.encode()).hexdigest()[:16]
     assert digest == SCHEMA_DIGEST, (
         "ScenarioSpec's JSON schema changed: re-record the cassettes "
-        "(tests/record_generate_cassettes.py) and update SCHEMA_DIGEST")
+        "(tests/record_generate_cassettes.py) and update SCHEMA_DIGEST"
+    )
 
 
 def test_free_weather_words_become_a_preset() -> None:
-    base = {"adversary_type": "car", "behavior": "brakes", "road_type": "highway",
-            "ego_maneuver": "go_straight", "geometry": "a highway",
-            "spawn_position": "ahead_same_lane", "spawn": "ahead"}
-    assert ScenarioSpec.model_validate({**base, "weather": "heavy rain at night"}).weather \
+    base = {
+        "adversary_type": "car",
+        "behavior": "brakes",
+        "road_type": "highway",
+        "ego_maneuver": "go_straight",
+        "geometry": "a highway",
+        "spawn_position": "ahead_same_lane",
+        "spawn": "ahead",
+    }
+    assert (
+        ScenarioSpec.model_validate({**base, "weather": "heavy rain at night"}).weather
         == "HardRainNight"
+    )
     assert ScenarioSpec.model_validate({**base, "weather": "sunny"}).weather == "ClearNoon"

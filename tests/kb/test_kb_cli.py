@@ -23,8 +23,20 @@ def test_list_and_show() -> None:
 
 
 def test_search_bm25() -> None:
-    result = runner.invoke(app, ["kb", "search", "the car in front slams on its brakes",
-                                 "--component", "behavior", "--backend", "bm25", "-k", "2"])
+    result = runner.invoke(
+        app,
+        [
+            "kb",
+            "search",
+            "the car in front slams on its brakes",
+            "--component",
+            "behavior",
+            "--backend",
+            "bm25",
+            "-k",
+            "2",
+        ],
+    )
     assert result.exit_code == 0, result.output
     assert "behavior.sudden_brake" in result.output
 
@@ -32,7 +44,8 @@ def test_search_bm25() -> None:
 def test_bad_user_file_is_reported_and_the_rest_still_works(tmp_path: Path) -> None:
     (tmp_path / "weather.yaml").write_text(
         "entries:\n  - id: weather.user_fog\n    snippet: \"param weather = 'ClearNoon'\"\n",
-        encoding="utf-8")
+        encoding="utf-8",
+    )
     result = runner.invoke(app, ["kb", "list", "--kb-dir", str(tmp_path), "-c", "weather"])
     assert result.exit_code == 0
     assert "weather.yaml" in result.output and "weather.user_fog" in result.output

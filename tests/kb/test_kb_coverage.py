@@ -9,21 +9,44 @@ from arise.kb.runner import builtin_maps
 KB = load_kb(strict=True)
 
 REQUIRED_BEHAVIORS = [
-    "behavior.cross_and_stop", "behavior.cross_diagonally", "behavior.dash_from_occluder",
-    "behavior.sudden_brake", "behavior.emergency_stop", "behavior.slow_to_block",
-    "behavior.accelerate", "behavior.cut_in", "behavior.weave_between_lanes",
-    "behavior.turn_left_across_path", "behavior.turn_right_across_path",
-    "behavior.run_red_light", "behavior.reverse", "behavior.swerve",
-    "behavior.block_lanes_slowly", "behavior.dismount_in_intersection",
+    "behavior.cross_and_stop",
+    "behavior.cross_diagonally",
+    "behavior.dash_from_occluder",
+    "behavior.sudden_brake",
+    "behavior.emergency_stop",
+    "behavior.slow_to_block",
+    "behavior.accelerate",
+    "behavior.cut_in",
+    "behavior.weave_between_lanes",
+    "behavior.turn_left_across_path",
+    "behavior.turn_right_across_path",
+    "behavior.run_red_light",
+    "behavior.reverse",
+    "behavior.swerve",
+    "behavior.block_lanes_slowly",
+    "behavior.dismount_in_intersection",
     "behavior.stop_in_intersection",
 ]
 
 # The paper's eight categories and the extra situations, each as tags some entry carries.
 REQUIRED_TAGS = [
-    "straight_obstacle", "turning_obstacle", "lane_changing", "vehicle_passing",
-    "red_light_running", "unprotected_left_turn", "right_turn", "crossing_negotiation",
-    "highway", "cyclist", "motorcycle", "truck", "roadside_parked", "bus_stop",
-    "vending_machine", "parked_car", "background_traffic",
+    "straight_obstacle",
+    "turning_obstacle",
+    "lane_changing",
+    "vehicle_passing",
+    "red_light_running",
+    "unprotected_left_turn",
+    "right_turn",
+    "crossing_negotiation",
+    "highway",
+    "cyclist",
+    "motorcycle",
+    "truck",
+    "roadside_parked",
+    "bus_stop",
+    "vending_machine",
+    "parked_car",
+    "background_traffic",
 ]
 
 

@@ -8,8 +8,12 @@ from arise.kb.schema import Entry
 
 
 def _entry(component: str, snippet: str, **fields: object) -> Entry:
-    data: dict[str, object] = {"id": f"{component}.probe", "component": component,
-                               "descriptions": ["probe"], "snippet": snippet}
+    data: dict[str, object] = {
+        "id": f"{component}.probe",
+        "component": component,
+        "descriptions": ["probe"],
+        "snippet": snippet,
+    }
     data.update(fields)
     return Entry.model_validate(data)
 
@@ -31,43 +35,66 @@ def test_scenic2_object_creation_is_caught() -> None:
 
 
 def test_params_are_opt_declared_and_read_via_global_parameters() -> None:
-    undeclared = _entry("misc", "cone = new Cone ahead of ego by globalParameters.OPT_GAP\n",
-                        defines=["cone"])
+    undeclared = _entry(
+        "misc", "cone = new Cone ahead of ego by globalParameters.OPT_GAP\n", defines=["cone"]
+    )
     assert "does not declare `param OPT_GAP`" in _messages(undeclared)
-    bare = _entry("misc", "param OPT_GAP = Range(5, 9)\ncone = new Cone ahead of ego by OPT_GAP\n",
-                  defines=["cone"], params=["OPT_GAP"])
+    bare = _entry(
+        "misc",
+        "param OPT_GAP = Range(5, 9)\ncone = new Cone ahead of ego by OPT_GAP\n",
+        defines=["cone"],
+        params=["OPT_GAP"],
+    )
     assert "without globalParameters" in _messages(bare)
-    badly_named = _entry("misc", "param gap = 5\ncone = new Cone ahead of ego by 5\n",
-                         defines=["cone"])
+    badly_named = _entry(
+        "misc", "param gap = 5\ncone = new Cone ahead of ego by 5\n", defines=["cone"]
+    )
     assert "tunables are named OPT_*" in _messages(badly_named)
-    in_require = _entry("requirements",
-                        "param OPT_D = Range(5, 9)\nrequire (distance to adversary) > "
-                        "globalParameters.OPT_D\n", params=["OPT_D"])
+    in_require = _entry(
+        "requirements",
+        "param OPT_D = Range(5, 9)\nrequire (distance to adversary) > globalParameters.OPT_D\n",
+        params=["OPT_D"],
+    )
     assert "`require` condition reads globalParameters" in _messages(in_require)
 
 
 def test_adversary_behavior_name_and_placeholders() -> None:
-    wrong_name = _entry("behavior", "behavior Brake():\n    take SetBrakeAction(1)\n",
-                        defines=["Brake"])
+    wrong_name = _entry(
+        "behavior", "behavior Brake():\n    take SetBrakeAction(1)\n", defines=["Brake"]
+    )
     assert "AdversaryBehavior" in _messages(wrong_name)
-    undeclared = _entry("spawn", "adversary = new {{ADVERSARY_CLASS}} ahead of ego by 9, "
-                        "with behavior AdversaryBehavior()\n", defines=["adversary"])
+    undeclared = _entry(
+        "spawn",
+        "adversary = new {{ADVERSARY_CLASS}} ahead of ego by 9, "
+        "with behavior AdversaryBehavior()\n",
+        defines=["adversary"],
+    )
     assert "placeholders" in _messages(undeclared)
-    declared = _entry("spawn", "adversary = new {{ADVERSARY_CLASS}} ahead of ego by 9, "
-                      "with behavior AdversaryBehavior()\n", defines=["adversary"],
-                      placeholders=["ADVERSARY_CLASS"])
+    declared = _entry(
+        "spawn",
+        "adversary = new {{ADVERSARY_CLASS}} ahead of ego by 9, "
+        "with behavior AdversaryBehavior()\n",
+        defines=["adversary"],
+        placeholders=["ADVERSARY_CLASS"],
+    )
     assert not lint_entry(declared)
 
 
 def test_interface_must_match_the_code() -> None:
-    entry = _entry("misc", "cone = new Cone ahead of ego by 10\nother = 3\n",
-                   defines=["cone", "missing"], needs=["egoLane"])
+    entry = _entry(
+        "misc",
+        "cone = new Cone ahead of ego by 10\nother = 3\n",
+        defines=["cone", "missing"],
+        needs=["egoLane"],
+    )
     text = _messages(entry)
     assert "missing" in text and "other" in text and "egoLane" in text
 
 
 def test_bad_weather_is_caught() -> None:
     assert "unknown CARLA weather preset" in _messages(
-        _entry("weather", "param weather = 'SunnyNoon'\n"))
+        _entry("weather", "param weather = 'SunnyNoon'\n")
+    )
     assert "unknown CARLA weather parameter" in _messages(
-        _entry("weather", "param weather = {'fogginess': 3.0}\n"))
+        _entry("weather", "param weather = {'fogginess': 3.0}\n")
+    )

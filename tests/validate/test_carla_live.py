@@ -19,7 +19,8 @@ def test_category_runs_in_real_carla() -> None:
     reason = unreachable_reason(HOST, PORT, timeout=2)
     if reason:
         pytest.skip(reason)
-    result = check(EXAMPLES / "categories" / "straight_obstacle.scenic",
-                   CheckOptions(simulator="carla", carla_host=HOST, carla_port=PORT, seed=1,
-                                timeout=300))
+    result = check(
+        EXAMPLES / "categories" / "straight_obstacle.scenic",
+        CheckOptions(simulator="carla", carla_host=HOST, carla_port=PORT, seed=1, timeout=300),
+    )
     assert result.ok, result.diagnostic

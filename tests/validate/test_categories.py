@@ -53,8 +53,9 @@ def test_category_runs_on_our_maps(name: str, validator_pool: WorkerPool) -> Non
 @pytest.mark.slow
 @pytest.mark.carla_towns
 @pytest.mark.parametrize("name", sorted(CATEGORIES))
-def test_category_runs_on_carla_towns(name: str, validator_pool: WorkerPool,
-                                      carla_maps: Path) -> None:
+def test_category_runs_on_carla_towns(
+    name: str, validator_pool: WorkerPool, carla_maps: Path
+) -> None:
     result = _check_category(name, validator_pool, carla_maps)
     assert result.map is not None
     if result.map.requested in ("Town03", "Town05"):

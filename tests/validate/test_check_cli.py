@@ -15,15 +15,23 @@ from tests.conftest import DATA, EXAMPLES
 
 
 def arise(*args: str, timeout: float = 300) -> subprocess.CompletedProcess[str]:
-    return subprocess.run([sys.executable, "-m", "arise", *args], capture_output=True,
-                          text=True, timeout=timeout)
+    return subprocess.run(
+        [sys.executable, "-m", "arise", *args], capture_output=True, text=True, timeout=timeout
+    )
 
 
 @pytest.mark.slow
 def test_check_example_writes_json_and_png(tmp_path: Path) -> None:
     png = tmp_path / "scene.png"
-    run = arise("check", str(EXAMPLES / "pedestrian_crossing.scenic"), "--json", "--seed", "1",
-                "--png", str(png))
+    run = arise(
+        "check",
+        str(EXAMPLES / "pedestrian_crossing.scenic"),
+        "--json",
+        "--seed",
+        "1",
+        "--png",
+        str(png),
+    )
     assert run.returncode == 0, run.stderr
     result = json.loads(run.stdout)
     assert result["ok"] is True
@@ -75,8 +83,15 @@ def _free_port() -> int:
 
 def test_unreachable_carla_fails_within_seconds() -> None:
     started = time.monotonic()
-    run = arise("check", str(EXAMPLES / "pedestrian_crossing.scenic"), "--simulator", "carla",
-                "--carla-port", str(_free_port()), "--json")
+    run = arise(
+        "check",
+        str(EXAMPLES / "pedestrian_crossing.scenic"),
+        "--simulator",
+        "carla",
+        "--carla-port",
+        str(_free_port()),
+        "--json",
+    )
     assert time.monotonic() - started < 15
     diagnostic = json.loads(run.stdout)["diagnostic"]
     assert diagnostic["error_type"] == "CarlaUnreachable"

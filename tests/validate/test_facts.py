@@ -10,13 +10,15 @@ from arise.validate.facts import ego_pair_facts, find_collisions
 from arise.validate.types import AgentTrace, TracePoint
 
 
-def _straight(name: str, x: float, y: float, heading: float, speed: float, steps: int,
-              ego: bool = False) -> AgentTrace:
+def _straight(
+    name: str, x: float, y: float, heading: float, speed: float, steps: int, ego: bool = False
+) -> AgentTrace:
     dx, dy = -math.sin(heading) * speed * 0.1, math.cos(heading) * speed * 0.1
-    points = [TracePoint(step=i, x=x + dx * i, y=y + dy * i, heading=heading, speed=speed)
-              for i in range(steps)]
-    return AgentTrace(name=name, kind="Car", width=2.0, length=4.5, is_ego=ego,
-                      trajectory=points)
+    points = [
+        TracePoint(step=i, x=x + dx * i, y=y + dy * i, heading=heading, speed=speed)
+        for i in range(steps)
+    ]
+    return AgentTrace(name=name, kind="Car", width=2.0, length=4.5, is_ego=ego, trajectory=points)
 
 
 def test_ttc_is_bumper_gap_over_closing_speed() -> None:
@@ -51,9 +53,15 @@ def test_parallel_cars_never_collide_and_have_no_ttc() -> None:
 
 def test_pedestrian_crossing_ahead_is_closest_when_in_lane() -> None:
     ego = _straight("ego", 0, 0, 0.0, 5, 40, ego=True)
-    walker = AgentTrace(name="Pedestrian1", kind="Pedestrian", width=0.5, length=0.5,
-                        trajectory=[TracePoint(step=i, x=6 - 0.2 * i, y=15, heading=math.pi / 2,
-                                               speed=2) for i in range(40)])
+    walker = AgentTrace(
+        name="Pedestrian1",
+        kind="Pedestrian",
+        width=0.5,
+        length=0.5,
+        trajectory=[
+            TracePoint(step=i, x=6 - 0.2 * i, y=15, heading=math.pi / 2, speed=2) for i in range(40)
+        ],
+    )
     facts = ego_pair_facts([ego, walker])[0]
     assert facts.collided
     assert 0 < facts.min_distance_step < 40

@@ -33,7 +33,8 @@ def test_traffic_light_and_autopilot_actions_are_recorded(validator_pool: Worker
     assert any(e["kind"] == "autopilot" for e in auto.simulation.events)
     ego = next(a for a in auto.simulation.agents if a.is_ego)
     travelled = abs(ego.trajectory[-1].x - ego.trajectory[0].x) + abs(
-        ego.trajectory[-1].y - ego.trajectory[0].y)
+        ego.trajectory[-1].y - ego.trajectory[0].y
+    )
     assert travelled > 10, "autopilot should drive the ego along its lane"
 
 
@@ -49,9 +50,13 @@ def test_script_needing_the_carla_api_says_what_it_needs(validator_pool: WorkerP
 @pytest.mark.slow
 @pytest.mark.carla_towns
 @pytest.mark.parametrize("name", RUNNABLE)
-def test_foreign_script_runs_on_carla_towns(name: str, validator_pool: WorkerPool,
-                                            carla_maps: Path) -> None:
-    result = check(FOREIGN / f"{name}.scenic", CheckOptions(seed=5, map_dir=str(carla_maps)),
-                   pool=validator_pool)
+def test_foreign_script_runs_on_carla_towns(
+    name: str, validator_pool: WorkerPool, carla_maps: Path
+) -> None:
+    result = check(
+        FOREIGN / f"{name}.scenic",
+        CheckOptions(seed=5, map_dir=str(carla_maps)),
+        pool=validator_pool,
+    )
     assert result.ok, result.diagnostic
     assert result.map is not None and result.map.name.startswith("Town")

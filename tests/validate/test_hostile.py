@@ -41,7 +41,8 @@ pytestmark = pytest.mark.slow
 
 HOSTILE = DATA / "hostile"
 MANIFEST: list[dict[str, Any]] = yaml.safe_load(
-    (HOSTILE / "manifest.yaml").read_text(encoding="utf-8"))["scripts"]
+    (HOSTILE / "manifest.yaml").read_text(encoding="utf-8")
+)["scripts"]
 LIVE = [entry for entry in MANIFEST if entry["live"]]
 SECRET_TEXT = f"ARISE-HOSTILE-SECRET-{uuid.uuid4().hex}"
 TOKEN_VARIABLE = "ARISE_HOSTILE_TOKEN"  # an environment variable holding the secret text
@@ -50,7 +51,6 @@ FORGED_MARKER = "HOSTILE-FORGED"
 FOLLOWUP = DATA / "broken" / "undefined_name_top.scenic"
 CHECK_TIMEOUT = 30.0
 LIVE_TIMEOUT = 60.0
-
 
 
 class Listener:
@@ -68,8 +68,10 @@ class Listener:
         self.connections = 0
         self.datagrams = 0
         self._stop = threading.Event()
-        self._threads = [threading.Thread(target=self._accept, daemon=True),
-                         threading.Thread(target=self._receive, daemon=True)]
+        self._threads = [
+            threading.Thread(target=self._accept, daemon=True),
+            threading.Thread(target=self._receive, daemon=True),
+        ]
         for thread in self._threads:
             thread.start()
 
@@ -143,20 +145,30 @@ class Case:
 def prepare(entry: dict[str, Any], root: Path, listener: Listener) -> Case:
     name = entry["name"]
     root.mkdir(parents=True)
-    folder, private, home, outside, work = (root / part for part in
-                                            ("scripts", "private", "home", "outside", "work"))
+    folder, private, home, outside, work = (
+        root / part for part in ("scripts", "private", "home", "outside", "work")
+    )
     for path in (folder, private, home / ".ssh", outside, work):
         path.mkdir(parents=True)
     secret = private / "secret.txt"
     secret.write_text(SECRET_TEXT + "\n", encoding="utf-8")
     key = home / ".ssh" / "id_rsa"
-    key.write_text(f"-----BEGIN OPENSSH PRIVATE KEY-----\n{SECRET_TEXT}\n"
-                   "-----END OPENSSH PRIVATE KEY-----\n", encoding="utf-8")
+    key.write_text(
+        f"-----BEGIN OPENSSH PRIVATE KEY-----\n{SECRET_TEXT}\n-----END OPENSSH PRIVATE KEY-----\n",
+        encoding="utf-8",
+    )
     key.chmod(0o600)
     canary = outside / f"CANARY-{name}.npy"  # .npy: numpy.save keeps the name as it is
-    values = {"@CANARY@": str(canary), "@SECRET_TEXT@": SECRET_TEXT, "@SECRET@": str(secret),
-              "@SSH_KEY@": str(key), "@HOME@": str(home), "@PRIVATE@": str(private),
-              "@PORT@": str(listener.port), "@TEST_PID@": str(os.getpid())}
+    values = {
+        "@CANARY@": str(canary),
+        "@SECRET_TEXT@": SECRET_TEXT,
+        "@SECRET@": str(secret),
+        "@SSH_KEY@": str(key),
+        "@HOME@": str(home),
+        "@PRIVATE@": str(private),
+        "@PORT@": str(listener.port),
+        "@TEST_PID@": str(os.getpid()),
+    }
 
     def fill(text: str) -> str:
         for placeholder, value in values.items():  # @SECRET_TEXT@ before @SECRET@
@@ -219,8 +231,11 @@ def listener() -> Iterator[Listener]:
 def test_confinement_is_active_on_this_machine(hostile_pool: WorkerPool) -> None:
     sandbox = hostile_pool.sandbox()
     assert sandbox.full, f"confinement is incomplete here: {sandbox.label}; {sandbox.notes}"
-    result = check(EXAMPLES / "pedestrian_crossing.scenic",
-                   CheckOptions(seed=1, steps=40, timeout=CHECK_TIMEOUT), pool=hostile_pool)
+    result = check(
+        EXAMPLES / "pedestrian_crossing.scenic",
+        CheckOptions(seed=1, steps=40, timeout=CHECK_TIMEOUT),
+        pool=hostile_pool,
+    )
     assert result.ok, result.diagnostic
     assert result.sandbox is not None and result.sandbox.full, result.sandbox
 
@@ -236,12 +251,23 @@ def test_manifest_names_every_script_once() -> None:
     for entry in MANIFEST:
         assert entry["where"] in ("top", "def", "behavior", "monitor", "require", "worker")
         assert not entry["live"] or entry["evidence"] in (
-            "canary", "secret", "connection", "signal", "marker"), entry["name"]
+            "canary",
+            "secret",
+            "connection",
+            "signal",
+            "marker",
+        ), entry["name"]
 
 
 # --- every script, with and without the static gate -----------------------------------------
-def _escapes(case: Case, result: Any, contacts_before: int, signals_before: int,
-             signals: SignalCounter, may_forge_verdict: bool = False) -> list[str]:
+def _escapes(
+    case: Case,
+    result: Any,
+    contacts_before: int,
+    signals_before: int,
+    signals: SignalCounter,
+    may_forge_verdict: bool = False,
+) -> list[str]:
     """What got out, or what is not a clear failure; empty when the script was contained.
 
     `may_forge_verdict`: the one documented limit (a script past the gate can lie about
@@ -254,16 +280,21 @@ def _escapes(case: Case, result: Any, contacts_before: int, signals_before: int,
         if text in dumped:
             problems.append(f"the result holds {'the secret' if text == SECRET_TEXT else text!r}")
     if case.listener.contacts > contacts_before:
-        problems.append(f"the loopback listener was reached ({case.listener.connections} TCP, "
-                        f"{case.listener.datagrams} UDP)")
+        problems.append(
+            f"the loopback listener was reached ({case.listener.connections} TCP, "
+            f"{case.listener.datagrams} UDP)"
+        )
     if signals.count > signals_before:
         problems.append("the test process got a signal from the script")
     if may_forge_verdict:
         pass
     elif result.ok is not False:
         problems.append("the check reported success")
-    elif result.diagnostic is None or not result.diagnostic.stage \
-            or not result.diagnostic.message.strip():
+    elif (
+        result.diagnostic is None
+        or not result.diagnostic.stage
+        or not result.diagnostic.message.strip()
+    ):
         problems.append(f"no clear diagnostic: {result.diagnostic!r}")
     if result.sandbox is None:
         problems.append("the result does not say which confinement it ran under")
@@ -276,25 +307,38 @@ def _followup_problems(pool: WorkerPool) -> list[str]:
     """A script that tampered with the warm worker shows on the next check."""
     result = check(FOLLOWUP, CheckOptions(seed=1, steps=40, timeout=CHECK_TIMEOUT), pool=pool)
     diagnostic = result.diagnostic
-    if result.ok or diagnostic is None or diagnostic.error_type != "NameError" \
-            or "AdversaryBehaviour" not in diagnostic.message:
-        return [f"the next check (a broken script) came back wrong: ok={result.ok}, "
-                f"{diagnostic.one_line() if diagnostic else 'no diagnostic'}"]
+    if (
+        result.ok
+        or diagnostic is None
+        or diagnostic.error_type != "NameError"
+        or "AdversaryBehaviour" not in diagnostic.message
+    ):
+        return [
+            f"the next check (a broken script) came back wrong: ok={result.ok}, "
+            f"{diagnostic.one_line() if diagnostic else 'no diagnostic'}"
+        ]
     return []
 
 
 @pytest.mark.parametrize("entry", MANIFEST, ids=[entry["name"] for entry in MANIFEST])
-def test_hostile_script_is_contained(entry: dict[str, Any], hostile_pool: WorkerPool,
-                                     listener: Listener, signals: SignalCounter,
-                                     tmp_path: Path) -> None:
+def test_hostile_script_is_contained(
+    entry: dict[str, Any],
+    hostile_pool: WorkerPool,
+    listener: Listener,
+    signals: SignalCounter,
+    tmp_path: Path,
+) -> None:
     report = []
     for static_gate in (True, False):
         label = "with the static gate" if static_gate else "without the static gate"
         case = prepare(entry, tmp_path / ("gate" if static_gate else "no-gate"), listener)
         contacts, signals_before = listener.contacts, signals.count
-        options = CheckOptions(seed=1, steps=40, timeout=float(entry.get("timeout",
-                                                                          CHECK_TIMEOUT)),
-                               static_gate=static_gate)
+        options = CheckOptions(
+            seed=1,
+            steps=40,
+            timeout=float(entry.get("timeout", CHECK_TIMEOUT)),
+            static_gate=static_gate,
+        )
         try:
             result = check(case.script, options, pool=hostile_pool)
         except Exception as error:  # check() must never raise for a bad script
@@ -318,22 +362,39 @@ class LiveRun:
 
 
 @pytest.fixture(scope="session")
-def live_runs(tmp_path_factory: pytest.TempPathFactory,
-              signals: SignalCounter) -> dict[str, LiveRun]:
+def live_runs(
+    tmp_path_factory: pytest.TempPathFactory, signals: SignalCounter
+) -> dict[str, LiveRun]:
     """Every live script run with no confinement and no gate: each in a forked child of
     an unconfined runner that imported Scenic once (tests/validate/unconfined_runner.py)."""
     root = tmp_path_factory.mktemp("live")
     map_copy = root / "arise_straight.xodr"
     shutil.copyfile(str(resources.files("arise.maps") / "data" / "arise_straight.xodr"), map_copy)
-    env = {"PATH": os.environ.get("PATH", "/usr/bin:/bin"), "HOME": str(root),
-           TOKEN_VARIABLE: SECRET_TEXT, "PYTHONDONTWRITEBYTECODE": "1", "MPLBACKEND": "Agg",
-           "ARISE_CACHE_DIR": str(root / "cache"), "OMP_NUM_THREADS": "1",
-           "OPENBLAS_NUM_THREADS": "1"}
+    env = {
+        "PATH": os.environ.get("PATH", "/usr/bin:/bin"),
+        "HOME": str(root),
+        TOKEN_VARIABLE: SECRET_TEXT,
+        "PYTHONDONTWRITEBYTECODE": "1",
+        "MPLBACKEND": "Agg",
+        "ARISE_CACHE_DIR": str(root / "cache"),
+        "OMP_NUM_THREADS": "1",
+        "OPENBLAS_NUM_THREADS": "1",
+    }
     runner = subprocess.Popen(
-        [sys.executable, str(Path(__file__).with_name("unconfined_runner.py")), str(map_copy),
-         str(EXAMPLES / "pedestrian_crossing.scenic")],
-        stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True,
-        cwd=root, env=env, start_new_session=True)
+        [
+            sys.executable,
+            str(Path(__file__).with_name("unconfined_runner.py")),
+            str(map_copy),
+            str(EXAMPLES / "pedestrian_crossing.scenic"),
+        ],
+        stdin=subprocess.PIPE,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.DEVNULL,
+        text=True,
+        cwd=root,
+        env=env,
+        start_new_session=True,
+    )
     assert runner.stdin is not None and runner.stdout is not None
     runs: dict[str, LiveRun] = {}
     try:
@@ -344,20 +405,28 @@ def live_runs(tmp_path_factory: pytest.TempPathFactory,
                 case = prepare(entry, root / entry["name"], listener)
                 signals_before = signals.count
                 output_file = case.root / "output.txt"
-                runner.stdin.write(json.dumps({
-                    "script": str(case.script), "cwd": str(case.work), "home": str(case.home),
-                    "output": str(output_file), "timeout": LIVE_TIMEOUT}) + "\n")
+                runner.stdin.write(
+                    json.dumps(
+                        {
+                            "script": str(case.script),
+                            "cwd": str(case.work),
+                            "home": str(case.home),
+                            "output": str(output_file),
+                            "timeout": LIVE_TIMEOUT,
+                        }
+                    )
+                    + "\n"
+                )
                 runner.stdin.flush()
                 reply = json.loads(runner.stdout.readline() or "{}")
                 output = output_file.read_text(errors="replace") if output_file.exists() else ""
                 evidence = {
-                    "canary": case.canary_exists,
-                    "secret": lambda: SECRET_TEXT in output,  # noqa: B023
-                    "connection": lambda: listener.contacts > 0,  # noqa: B023
-                    "signal": lambda: (reply.get("signals", 0) > 0  # noqa: B023
-                                       or signals.count > signals_before),  # noqa: B023
-                    "marker": lambda: FORGED_MARKER in output,  # noqa: B023
-                }[entry["evidence"]]()
+                    "canary": case.canary_exists(),
+                    "secret": SECRET_TEXT in output,
+                    "connection": listener.contacts > 0,
+                    "signal": reply.get("signals", 0) > 0 or signals.count > signals_before,
+                    "marker": FORGED_MARKER in output,
+                }[entry["evidence"]]
                 runs[entry["name"]] = LiveRun(evidence, f"{reply}\n{output}")
             finally:
                 listener.close()
@@ -372,8 +441,11 @@ def live_runs(tmp_path_factory: pytest.TempPathFactory,
 
 
 @pytest.mark.parametrize("entry", LIVE, ids=[entry["name"] for entry in LIVE])
-def test_attack_works_without_confinement(entry: dict[str, Any],
-                                          live_runs: dict[str, LiveRun]) -> None:
+def test_attack_works_without_confinement(
+    entry: dict[str, Any], live_runs: dict[str, LiveRun]
+) -> None:
     run = live_runs[entry["name"]]
-    assert run.evidence, (f"{entry['name']} did nothing unconfined (expected: "
-                          f"{entry['evidence']}); output:\n{run.output[-3000:]}")
+    assert run.evidence, (
+        f"{entry['name']} did nothing unconfined (expected: "
+        f"{entry['evidence']}); output:\n{run.output[-3000:]}"
+    )

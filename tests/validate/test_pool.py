@@ -31,12 +31,16 @@ def test_warm_worker_is_reused_then_recycled() -> None:
 @pytest.mark.slow
 def test_memory_bomb_does_not_touch_the_caller(validator_pool: WorkerPool) -> None:
     before = os.getpid()
-    result = check(DATA / "broken" / "memory_bomb.scenic", CheckOptions(seed=1, memory_mb=512),
-                   pool=validator_pool)
+    result = check(
+        DATA / "broken" / "memory_bomb.scenic",
+        CheckOptions(seed=1, memory_mb=512),
+        pool=validator_pool,
+    )
     assert result.diagnostic is not None and result.diagnostic.error_type == "MemoryError"
     assert os.getpid() == before
-    again = check(EXAMPLES / "pedestrian_crossing.scenic", CheckOptions(seed=1),
-                  pool=validator_pool)
+    again = check(
+        EXAMPLES / "pedestrian_crossing.scenic", CheckOptions(seed=1), pool=validator_pool
+    )
     assert again.ok
 
 

@@ -53,8 +53,9 @@ def test_every_result_names_its_confinement(validator_pool: WorkerPool) -> None:
     assert result.sandbox is not None and result.sandbox.full
 
 
-def test_no_api_key_reaches_the_worker(validator_pool: WorkerPool,
-                                       monkeypatch: pytest.MonkeyPatch) -> None:
+def test_no_api_key_reaches_the_worker(
+    validator_pool: WorkerPool, monkeypatch: pytest.MonkeyPatch
+) -> None:
     monkeypatch.setenv("OPENAI_API_KEY", "sk-canary-0123456789")
     monkeypatch.setenv("ANTHROPIC_API_KEY", "sk-ant-canary-0123456789")
     # A fresh pool: workers inherit the environment when they start.
@@ -66,10 +67,10 @@ def test_no_api_key_reaches_the_worker(validator_pool: WorkerPool,
 
 
 def test_home_is_the_scratch_folder_and_the_real_home_is_unreadable(
-        validator_pool: WorkerPool) -> None:
+    validator_pool: WorkerPool,
+) -> None:
     home = Path.home()
-    result = check_text(_raise_with(f"os.listdir({str(home)!r})"), OPTIONS,
-                        pool=validator_pool)
+    result = check_text(_raise_with(f"os.listdir({str(home)!r})"), OPTIONS, pool=validator_pool)
     assert result.diagnostic is not None
     assert result.diagnostic.error_type == "PermissionError", result.diagnostic
     assert "sandbox refused" in (result.diagnostic.hint or "")
@@ -78,8 +79,9 @@ def test_home_is_the_scratch_folder_and_the_real_home_is_unreadable(
 def test_require_sandbox_refuses_an_unconfined_worker() -> None:
     with WorkerPool(size=1, confine=False) as pool:
         unconfined = check_text(HEADER + EGO, CheckOptions(seed=1, steps=5), pool=pool)
-        refused = check_text(HEADER + EGO, CheckOptions(seed=1, steps=5, require_sandbox=True),
-                             pool=pool)
+        refused = check_text(
+            HEADER + EGO, CheckOptions(seed=1, steps=5, require_sandbox=True), pool=pool
+        )
     assert unconfined.ok and unconfined.sandbox is not None
     assert not unconfined.sandbox.full and "MISSING" in unconfined.sandbox.label
     assert not refused.ok and refused.diagnostic is not None
@@ -87,8 +89,9 @@ def test_require_sandbox_refuses_an_unconfined_worker() -> None:
     assert "landlock-fs" in refused.diagnostic.message
 
 
-def test_require_sandbox_from_the_config_file(tmp_path: Path,
-                                              monkeypatch: pytest.MonkeyPatch) -> None:
+def test_require_sandbox_from_the_config_file(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
     config = tmp_path / "config.toml"
     config.write_text("[sandbox]\nrequire = true\n", encoding="utf-8")
     monkeypatch.setenv("ARISE_CONFIG", str(config))
@@ -109,40 +112,48 @@ def test_a_worker_cannot_write_the_map_cache(validator_pool: WorkerPool) -> None
     first = check_text(HEADER + EGO, CheckOptions(seed=2, steps=5), pool=validator_pool)
     assert first.map is not None
     target = Path(first.map.path).with_suffix(".pwned")
-    result = check_text(_raise_with(f"open({str(target)!r}, 'w').write('x')"), OPTIONS,
-                        pool=validator_pool)
+    result = check_text(
+        _raise_with(f"open({str(target)!r}, 'w').write('x')"), OPTIONS, pool=validator_pool
+    )
     assert result.diagnostic is not None and not target.exists()
 
 
-def test_a_symlinked_map_beside_the_script_is_not_read(tmp_path: Path,
-                                                      validator_pool: WorkerPool) -> None:
+def test_a_symlinked_map_beside_the_script_is_not_read(
+    tmp_path: Path, validator_pool: WorkerPool
+) -> None:
     secret = tmp_path / "secret.txt"
     secret.write_text("canary-map-secret", encoding="utf-8")
     folder = tmp_path / "scenario"
     folder.mkdir()
     (folder / "mine.xodr").symlink_to(secret)
     script = folder / "s.scenic"
-    script.write_text("param map = localPath('mine.xodr')\nmodel scenic.simulators.carla.model\n"
-                      + EGO, encoding="utf-8")
+    script.write_text(
+        "param map = localPath('mine.xodr')\nmodel scenic.simulators.carla.model\n" + EGO,
+        encoding="utf-8",
+    )
     result = check(script, CheckOptions(seed=1, steps=5), pool=validator_pool)
     assert result.map is not None and result.map.name != "mine"
     assert "canary-map-secret" not in result.model_dump_json()
 
 
 def test_picture_is_drawn_in_the_worker_and_written_by_the_parent(
-        tmp_path: Path, validator_pool: WorkerPool) -> None:
+    tmp_path: Path, validator_pool: WorkerPool
+) -> None:
     target = tmp_path / "pictures" / "scene.png"
-    result = check_text(HEADER + EGO, CheckOptions(seed=1, steps=10, png=str(target)),
-                        pool=validator_pool)
+    result = check_text(
+        HEADER + EGO, CheckOptions(seed=1, steps=10, png=str(target)), pool=validator_pool
+    )
     assert result.ok and result.png == str(target)
     assert target.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
 
 
 def test_scratch_flood_stops_the_worker(validator_pool: WorkerPool) -> None:
-    flood = (HEADER + "import os\nimport numpy\n"
-             "block = numpy.zeros(8 * 1024 * 1024, dtype=numpy.uint8)\n"
-             "for i in range(200):\n"
-             "    block.tofile(f'fill{i}.bin')\n" + EGO)
+    flood = (
+        HEADER + "import os\nimport numpy\n"
+        "block = numpy.zeros(8 * 1024 * 1024, dtype=numpy.uint8)\n"
+        "for i in range(200):\n"
+        "    block.tofile(f'fill{i}.bin')\n" + EGO
+    )
     result = check_text(flood, OPTIONS.model_copy(update={"timeout": 60}), pool=validator_pool)
     assert result.diagnostic is not None
     assert result.diagnostic.error_type in ("DiskQuotaExceeded", "OSError"), result.diagnostic
@@ -154,18 +165,31 @@ def test_check_cli_prints_the_sandbox(tmp_path: Path) -> None:
     script = tmp_path / "ok.scenic"
     script.write_text(HEADER + EGO, encoding="utf-8")
     arise = [sys.executable, "-m", "arise"]
-    shown = subprocess.run([*arise, "check", str(script), "--steps", "5", "--seed", "1"],
-                           capture_output=True, text=True, timeout=180)
+    shown = subprocess.run(
+        [*arise, "check", str(script), "--steps", "5", "--seed", "1"],
+        capture_output=True,
+        text=True,
+        timeout=180,
+    )
     assert shown.returncode == 0, shown.stdout + shown.stderr
     assert "sandbox: landlock+seccomp+rlimits" in shown.stdout
-    as_json = subprocess.run([*arise, "check", str(script), "--steps", "5", "--json"],
-                             capture_output=True, text=True, timeout=180)
+    as_json = subprocess.run(
+        [*arise, "check", str(script), "--steps", "5", "--json"],
+        capture_output=True,
+        text=True,
+        timeout=180,
+    )
     assert json.loads(as_json.stdout)["sandbox"]["active"]
 
 
 def test_doctor_reports_the_sandbox_reached_by_a_worker() -> None:
-    shown = subprocess.run([sys.executable, "-m", "arise", "doctor"], capture_output=True,
-                           text=True, timeout=180, env={**os.environ, "COLUMNS": "200"})
+    shown = subprocess.run(
+        [sys.executable, "-m", "arise", "doctor"],
+        capture_output=True,
+        text=True,
+        timeout=180,
+        env={**os.environ, "COLUMNS": "200"},
+    )
     line = next(line for line in shown.stdout.splitlines() if "sandbox" in line)
     assert line.split()[0] == "ok" and "landlock+seccomp+rlimits" in line, shown.stdout
 

@@ -28,8 +28,11 @@ def test_the_pin_says_why() -> None:
 
 
 def test_a_worker_trace_carries_heading_and_speed(validator_pool: WorkerPool) -> None:
-    result = check(REPO / "examples" / "pedestrian_crossing.scenic",
-                   CheckOptions(seed=1, steps=20), pool=validator_pool)
+    result = check(
+        REPO / "examples" / "pedestrian_crossing.scenic",
+        CheckOptions(seed=1, steps=20),
+        pool=validator_pool,
+    )
     assert result.ok and result.simulation is not None
     ego = next(a for a in result.simulation.agents if a.is_ego)
     assert any(point.speed > 0 for point in ego.trajectory)

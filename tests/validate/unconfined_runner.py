@@ -45,8 +45,9 @@ def _memoise_library_parsing() -> None:
         def __init__(self, key: tuple[str, str]):
             self.key = key
 
-    def parse_string(source: str, mode: str, *args: Any, filename: str = "<unknown>",
-                     **kwargs: Any) -> Any:
+    def parse_string(
+        source: str, mode: str, *args: Any, filename: str = "<unknown>", **kwargs: Any
+    ) -> Any:
         if str(filename).startswith(roots) and mode == "exec":
             key = (str(filename), source)
             if key not in translated:
@@ -56,8 +57,7 @@ def _memoise_library_parsing() -> None:
         return parse(source, mode, *args, filename=filename, **kwargs)
 
     def compile_scenic_ast(tree: Any, *args: Any, **kwargs: Any) -> Any:
-        return translated[tree.key] if isinstance(tree, Known) else translate(tree, *args,
-                                                                              **kwargs)
+        return translated[tree.key] if isinstance(tree, Known) else translate(tree, *args, **kwargs)
 
     translator.parse_string = parse_string
     translator.compileScenicAST = compile_scenic_ast
@@ -67,13 +67,15 @@ def run_script(script: str, map_path: str, steps: int = 40) -> None:
     import scenic
 
     scenario = scenic.scenarioFromFile(
-        script, model="arise.validate.worldmodel.model",
-        params={"map": map_path, "carla_map": "arise_straight"}, mode2D=True)
+        script,
+        model="arise.validate.worldmodel.model",
+        params={"map": map_path, "carla_map": "arise_straight"},
+        mode2D=True,
+    )
     scene, _ = scenario.generate(maxIterations=500)
     print("params:", {str(k): str(v) for k, v in dict(scene.params).items()}, flush=True)
     simulation = scenario.getSimulator().simulate(scene, maxSteps=steps)
-    print("simulated:", simulation is not None and simulation.result.terminationReason,
-          flush=True)
+    print("simulated:", simulation is not None and simulation.result.terminationReason, flush=True)
 
 
 def _child(request: dict[str, Any], map_path: str, protocol_fd: int) -> int:

@@ -77,71 +77,102 @@ def _modes(text: str) -> list[Mode]:
     try:
         return [Mode(item) for item in _split(text, "--modes")]
     except ValueError:
-        raise typer.BadParameter(f"modes are {', '.join(m.value for m in Mode)}",
-                                 param_hint="--modes") from None
+        raise typer.BadParameter(
+            f"modes are {', '.join(m.value for m in Mode)}", param_hint="--modes"
+        ) from None
 
 
 def _temperatures(text: str) -> list[float]:
     try:
         values = [float(item) for item in _split(text, "--temperatures")]
     except ValueError:
-        raise typer.BadParameter("temperatures are numbers, e.g. 0.3,1.0",
-                                 param_hint="--temperatures") from None
+        raise typer.BadParameter(
+            "temperatures are numbers, e.g. 0.3,1.0", param_hint="--temperatures"
+        ) from None
     if any(not 0 <= value <= 2 for value in values):
-        raise typer.BadParameter("temperatures lie between 0 and 2",
-                                 param_hint="--temperatures")
+        raise typer.BadParameter("temperatures lie between 0 and 2", param_hint="--temperatures")
     return values
 
 
 def bench_command(
     prompts: Annotated[Path, typer.Argument(help="Prompt file (.jsonl, .csv or .txt).")],
-    out: Annotated[Path, typer.Option("-o", "--out", help="Folder for the database, runs "
-                                      "and report.")] = Path("out/bench"),
-    runs: Annotated[int, typer.Option(help="Runs per prompt, mode and temperature.", min=1)]
-    = 1,
-    modes: Annotated[str, typer.Option(help="Comma-separated: arise, single-pass, chatscene.")]
-    = "arise",
+    out: Annotated[
+        Path, typer.Option("-o", "--out", help="Folder for the database, runs and report.")
+    ] = Path("out/bench"),
+    runs: Annotated[int, typer.Option(help="Runs per prompt, mode and temperature.", min=1)] = 1,
+    modes: Annotated[
+        str, typer.Option(help="Comma-separated: arise, single-pass, chatscene.")
+    ] = "arise",
     temperatures: Annotated[str, typer.Option(help="Comma-separated temperatures.")] = "0",
     provider: ProviderOption = None,
     model: ModelOption = None,
-    workers: Annotated[int, typer.Option(help="Parallel generators (each loads the model).",
-                                         min=1)] = 1,
+    workers: Annotated[
+        int, typer.Option(help="Parallel generators (each loads the model).", min=1)
+    ] = 1,
     executor: Annotated[str, typer.Option(help="local (processes) or ray.")] = "local",
-    ray_address: Annotated[str | None, typer.Option(help="Ray cluster to join (default: a "
-                                                    "local Ray instance).")] = None,
+    ray_address: Annotated[
+        str | None, typer.Option(help="Ray cluster to join (default: a local Ray instance).")
+    ] = None,
     max_repairs: Annotated[int, typer.Option(help="Repair budget per run.")] = 10,
     seed: Annotated[int, typer.Option(help="Base seed; run i uses seed + i.")] = 0,
     limit: Annotated[int | None, typer.Option(help="Only the first N prompts.")] = None,
-    judge: Annotated[bool, typer.Option("--judge", help="Score executed scripts with the "
-                                        "LLM judge (SCS).")] = False,
-    judge_provider: Annotated[str | None, typer.Option(
-        help="Provider of the judge (default: the generating model; a small local model is "
-        "a poor judge, see docs/judge.md).")] = None,
+    judge: Annotated[
+        bool, typer.Option("--judge", help="Score executed scripts with the LLM judge (SCS).")
+    ] = False,
+    judge_provider: Annotated[
+        str | None,
+        typer.Option(
+            help="Provider of the judge (default: the generating model; a small local model is "
+            "a poor judge, see docs/judge.md)."
+        ),
+    ] = None,
     judge_model: Annotated[str | None, typer.Option(help="Model of the judge.")] = None,
-    semantic_gate: Annotated[bool, typer.Option(
-        "--semantic-gate", help="A script must also pass the conformity check.")] = False,
+    semantic_gate: Annotated[
+        bool, typer.Option("--semantic-gate", help="A script must also pass the conformity check.")
+    ] = False,
     map_dir: Annotated[str | None, typer.Option(help="Extra maps (e.g. CARLA towns).")] = None,
     replay: ReplayOption = None,
-    cache: Annotated[bool, typer.Option("--cache", help="Reuse cached model answers (off by "
-                                        "default: a benchmark measures the model).")] = False,
+    cache: Annotated[
+        bool,
+        typer.Option(
+            "--cache",
+            help="Reuse cached model answers (off by default: a benchmark measures the model).",
+        ),
+    ] = False,
 ) -> None:
     if executor not in EXECUTORS:
         errors.print(f"[red]error:[/red] --executor is one of {', '.join(EXECUTORS)}")
         raise typer.Exit(2)
     items = read_prompts(prompts)  # PromptFileError: one line, exit 2
-    base = GenerateOptions(provider=provider, model=model, max_repairs=max_repairs, seed=seed,
-                           map_dir=map_dir, replay=replay, semantic_gate=semantic_gate,
-                           cache=cache)
-    config = BenchConfig(prompts=items[:limit] if limit else items, base=base,
-                         modes=_modes(modes), temperatures=_temperatures(temperatures),
-                         runs=runs, workers=workers, executor=executor, judge=judge,
-                         judge_provider=judge_provider, judge_model=judge_model,
-                         ray_address=ray_address)
+    base = GenerateOptions(
+        provider=provider,
+        model=model,
+        max_repairs=max_repairs,
+        seed=seed,
+        map_dir=map_dir,
+        replay=replay,
+        semantic_gate=semantic_gate,
+        cache=cache,
+    )
+    config = BenchConfig(
+        prompts=items[:limit] if limit else items,
+        base=base,
+        modes=_modes(modes),
+        temperatures=_temperatures(temperatures),
+        runs=runs,
+        workers=workers,
+        executor=executor,
+        judge=judge,
+        judge_provider=judge_provider,
+        judge_model=judge_model,
+        ray_address=ray_address,
+    )
     with BenchStore(out / "bench.sqlite") as store:  # BenchStoreError: one line, exit 2
         todo = pending(config, store)
         total = len(todo) + len(store.done_keys())
-        console.print(f"{len(todo)} run(s) to do, {total - len(todo)} already in "
-                      f"{out / 'bench.sqlite'}")
+        console.print(
+            f"{len(todo)} run(s) to do, {total - len(todo)} already in {out / 'bench.sqlite'}"
+        )
         if judge:
             console.print(f"{len(unjudged(config, store))} finished run(s) to judge first")
         try:
@@ -149,8 +180,7 @@ def bench_command(
                 _judge_with_bar(config, store, out)
             _run_with_bar(config, store, out, len(todo))
         except KeyboardInterrupt:
-            errors.print("\ninterrupted: finished runs are saved; run the same command to "
-                         "resume")
+            errors.print("\ninterrupted: finished runs are saved; run the same command to resume")
             raise typer.Exit(130) from None
         records = store.runs()
         written = write_report(records, out / "report", store.meta())
@@ -160,8 +190,14 @@ def bench_command(
 
 
 def _judge_with_bar(config: BenchConfig, store: BenchStore, out: Path) -> None:
-    columns = [TextColumn("judging"), BarColumn(), MofNCompleteColumn(), TimeElapsedColumn(),
-               TextColumn("ETA"), TimeRemainingColumn()]
+    columns = [
+        TextColumn("judging"),
+        BarColumn(),
+        MofNCompleteColumn(),
+        TimeElapsedColumn(),
+        TextColumn("ETA"),
+        TimeRemainingColumn(),
+    ]
     with Progress(*columns, console=console, disable=not console.is_terminal) as bar:
         task = bar.add_task("judge", total=len(unjudged(config, store)))
 
@@ -169,15 +205,22 @@ def _judge_with_bar(config: BenchConfig, store: BenchStore, out: Path) -> None:
             bar.update(task, advance=1)
             if not console.is_terminal:
                 scs = record.scs
-                console.print(f"judged {record.task.label()}: SCS "
-                              f"{'-' if scs is None else f'{scs:.2f}'}")
+                console.print(
+                    f"judged {record.task.label()}: SCS {'-' if scs is None else f'{scs:.2f}'}"
+                )
 
         judge_missing(config, store, out, advance)
 
 
 def _run_with_bar(config: BenchConfig, store: BenchStore, out: Path, count: int) -> None:
-    columns = [TextColumn("{task.description}"), BarColumn(), MofNCompleteColumn(),
-               TimeElapsedColumn(), TextColumn("ETA"), TimeRemainingColumn()]
+    columns = [
+        TextColumn("{task.description}"),
+        BarColumn(),
+        MofNCompleteColumn(),
+        TimeElapsedColumn(),
+        TextColumn("ETA"),
+        TimeRemainingColumn(),
+    ]
     with Progress(*columns, console=console, disable=not console.is_terminal) as bar:
         task = bar.add_task("runs", total=count)
         ok = [0]
@@ -186,21 +229,29 @@ def _run_with_bar(config: BenchConfig, store: BenchStore, out: Path, count: int)
             ok[0] += record.ok
             bar.update(task, advance=1, description=f"runs ({ok[0]} executable)")
             if not console.is_terminal:
-                console.print(f"{record.task.label()}: {record.status} "
-                              f"({record.repairs} repairs, {record.seconds:.0f} s)")
+                console.print(
+                    f"{record.task.label()}: {record.status} "
+                    f"({record.repairs} repairs, {record.seconds:.0f} s)"
+                )
 
         run_bench(config, store, out, advance)
 
 
 def report_command(
     database: Annotated[Path, typer.Argument(help="bench.sqlite written by `arise bench`.")],
-    out: Annotated[Path | None, typer.Option("-o", "--out", help="Report folder (default: "
-                                             "beside the database, report/).")] = None,
+    out: Annotated[
+        Path | None,
+        typer.Option("-o", "--out", help="Report folder (default: beside the database, report/)."),
+    ] = None,
     title: Annotated[str, typer.Option(help="Title of report.md.")] = "arise benchmark report",
-    recheck_runs: Annotated[bool, typer.Option(
-        "--recheck", help="First validate every executed run's script again and refresh its "
-        "conformity and criticality with the current checks (needs the runs' folders).")]
-    = False,
+    recheck_runs: Annotated[
+        bool,
+        typer.Option(
+            "--recheck",
+            help="First validate every executed run's script again and refresh its "
+            "conformity and criticality with the current checks (needs the runs' folders).",
+        ),
+    ] = False,
 ) -> None:
     if not database.is_file():
         errors.print(f"[red]error:[/red] no such database: {database}")
@@ -208,8 +259,10 @@ def report_command(
     with BenchStore(database) as store:  # BenchStoreError: one line, exit 2
         if recheck_runs:
             count = recheck(store)
-            console.print(f"re-checked {count} executed run(s); sandbox: " +
-                          confinement_summary([r.sandbox for r in store.runs() if r.ok]))
+            console.print(
+                f"re-checked {count} executed run(s); sandbox: "
+                + confinement_summary([r.sandbox for r in store.runs() if r.ok])
+            )
         records, meta = store.runs(), store.meta()
     if not records:
         errors.print(f"[red]error:[/red] {database} holds no finished runs yet")

@@ -44,8 +44,9 @@ def criticality(facts: SimulationFacts | None) -> Criticality | None:
     completion = None
     if ego is not None and len(ego.trajectory) > 1:
         points = ego.trajectory
-        covered = sum(math.hypot(b.x - a.x, b.y - a.y) for a, b in zip(points, points[1:],
-                                                                        strict=False))
+        covered = sum(
+            math.hypot(b.x - a.x, b.y - a.y) for a, b in zip(points, points[1:], strict=False)
+        )
         speed = _float(facts.params.get("OPT_EGO_SPEED")) or max(p.speed for p in points)
         planned = speed * facts.timestep * (len(points) - 1)
         completion = round(min(1.0, covered / planned), 3) if planned > 0 else None
@@ -53,4 +54,5 @@ def criticality(facts: SimulationFacts | None) -> Criticality | None:
         collision=bool(pair and pair.collided),
         min_distance=pair.min_distance if pair else None,
         min_ttc=pair.min_ttc if pair else None,
-        route_completion=completion)
+        route_completion=completion,
+    )

@@ -68,14 +68,18 @@ class DevsetError(AriseError):
 
 # -- the labels -----------------------------------------------------------------------------
 
+
 class DevSet(StrEnum):
     SHORT = "short"
     NHTSA = "nhtsa"
     CRASH_REPORT = "crash_report"
 
 
-DEVSET_FILES: dict[DevSet, str] = {DevSet.SHORT: "short.jsonl", DevSet.NHTSA: "nhtsa.jsonl",
-                                   DevSet.CRASH_REPORT: "crash_reports.jsonl"}
+DEVSET_FILES: dict[DevSet, str] = {
+    DevSet.SHORT: "short.jsonl",
+    DevSet.NHTSA: "nhtsa.jsonl",
+    DevSet.CRASH_REPORT: "crash_reports.jsonl",
+}
 
 
 class Role(StrEnum):
@@ -164,10 +168,13 @@ class LabeledActor:
     direction: Direction | None = None
 
     def as_dict(self) -> dict[str, Any]:
-        return {"class": self.cls, "count": self.count,
-                "role": self.role.value if self.role else None,
-                "start": self.start.value if self.start else None,
-                "direction": self.direction.value if self.direction else None}
+        return {
+            "class": self.cls,
+            "count": self.count,
+            "role": self.role.value if self.role else None,
+            "start": self.start.value if self.start else None,
+            "direction": self.direction.value if self.direction else None,
+        }
 
 
 @dataclass(frozen=True)
@@ -196,11 +203,14 @@ class Truth:
         return truth
 
     def as_dict(self) -> dict[str, Any]:
-        return {"actors": [a.as_dict() for a in self.actors],
-                "ego_maneuver": self.ego_maneuver.value if self.ego_maneuver else None,
-                "road": self.road.value if self.road else None, "weather": self.weather,
-                "required_objects": list(self.required_objects),
-                "must_come_close": self.must_come_close}
+        return {
+            "actors": [a.as_dict() for a in self.actors],
+            "ego_maneuver": self.ego_maneuver.value if self.ego_maneuver else None,
+            "road": self.road.value if self.road else None,
+            "weather": self.weather,
+            "required_objects": list(self.required_objects),
+            "must_come_close": self.must_come_close,
+        }
 
 
 @dataclass(frozen=True)
@@ -214,8 +224,7 @@ class LabeledDescription:
 
 # -- loading and validating -----------------------------------------------------------------
 
-_TRUTH_KEYS = {"actors", "ego_maneuver", "road", "weather", "required_objects",
-               "must_come_close"}
+_TRUTH_KEYS = {"actors", "ego_maneuver", "road", "weather", "required_objects", "must_come_close"}
 _ACTOR_KEYS = {"class", "count", "role", "start", "direction"}
 _LINE_KEYS = {"id", "set", "category", "text", "truth"}
 E = TypeVar("E", bound=StrEnum)
@@ -235,8 +244,9 @@ def _enum(enum: type[E], value: object, where: str, problems: list[str]) -> E | 
             raise ValueError(value)
         return enum(value)
     except ValueError:
-        problems.append(f"{where}: " + _unknown(where.split(".")[-1], value,
-                                                [m.value for m in enum]))
+        problems.append(
+            f"{where}: " + _unknown(where.split(".")[-1], value, [m.value for m in enum])
+        )
         return None
 
 
@@ -282,16 +292,23 @@ def _parse_truth(data: object) -> tuple[Truth | None, list[str]]:
         required = []
     for name in required:
         if name not in PROP_CLASSES and name not in MAP_FEATURES:
-            problems.append("required_objects: " + _unknown(
-                "prop or map feature", name, PROP_CLASSES + MAP_FEATURES))
+            problems.append(
+                "required_objects: "
+                + _unknown("prop or map feature", name, PROP_CLASSES + MAP_FEATURES)
+            )
     close = data.get("must_come_close")
     if close not in (True, None):
         problems.append(f"must_come_close: only true or null (not stated), got {close!r}")
     if problems:
         return None, problems
-    return Truth(actors=tuple(a for a in actors if a is not None), ego_maneuver=maneuver,
-                 road=road, weather=weather, required_objects=tuple(required),
-                 must_come_close=close), []
+    return Truth(
+        actors=tuple(a for a in actors if a is not None),
+        ego_maneuver=maneuver,
+        road=road,
+        weather=weather,
+        required_objects=tuple(required),
+        must_come_close=close,
+    ), []
 
 
 def parse_truth(data: object, where: str = "truth") -> Truth:
@@ -336,8 +353,15 @@ def load_devset(path: str | Path) -> list[LabeledDescription]:
         if line_problems or truth is None or dev_set is None:
             problems += [f"{where}: {p}" for p in line_problems]
             continue
-        items.append(LabeledDescription(id=data["id"], set=dev_set, category=data["category"],
-                                        text=data["text"], truth=truth))
+        items.append(
+            LabeledDescription(
+                id=data["id"],
+                set=dev_set,
+                category=data["category"],
+                text=data["text"],
+                truth=truth,
+            )
+        )
     if problems:
         raise DevsetError(f"{path}: {len(problems)} problem(s):\n  " + "\n  ".join(problems))
     return items
@@ -349,6 +373,7 @@ def load_devsets(folder: Path = DEVSET_DIR) -> dict[DevSet, list[LabeledDescript
 
 
 # -- verdicts -------------------------------------------------------------------------------
+
 
 @dataclass(frozen=True)
 class Verdict:
@@ -365,8 +390,13 @@ class Verdict:
         return f"{self.fact.value}:{self.subject}" if self.subject else self.fact.value
 
     def as_dict(self) -> dict[str, Any]:
-        return {"fact": self.fact.value, "subject": self.subject, "expected": self.expected,
-                "observed": self.observed, "match": self.match}
+        return {
+            "fact": self.fact.value,
+            "subject": self.subject,
+            "expected": self.expected,
+            "observed": self.observed,
+            "match": self.match,
+        }
 
 
 @dataclass
@@ -391,8 +421,11 @@ class Fidelity:
 
     @property
     def mismatches(self) -> list[str]:
-        return [f"{v.name}: expected {v.expected}, observed {v.observed}"
-                for v in self.verdicts if v.match is False]
+        return [
+            f"{v.name}: expected {v.expected}, observed {v.observed}"
+            for v in self.verdicts
+            if v.match is False
+        ]
 
     def by_fact(self) -> dict[str, dict[str, int]]:
         """Matched and scored facts per kind, for tables per fact across runs."""
@@ -408,16 +441,24 @@ class Fidelity:
         for verdict in self.verdicts:
             if verdict.name == name:
                 return verdict
-        raise KeyError(f"no verdict {name!r}; there are: "
-                       f"{', '.join(v.name for v in self.verdicts) or 'none'}")
+        raise KeyError(
+            f"no verdict {name!r}; there are: {', '.join(v.name for v in self.verdicts) or 'none'}"
+        )
 
     def as_dict(self) -> dict[str, Any]:
-        return {"executed": self.executed, "score": self.score, "matched": self.matched,
-                "scored": len(self.scored), "mismatches": self.mismatches,
-                "by_fact": self.by_fact(), "verdicts": [v.as_dict() for v in self.verdicts]}
+        return {
+            "executed": self.executed,
+            "score": self.score,
+            "matched": self.matched,
+            "scored": len(self.scored),
+            "mismatches": self.mismatches,
+            "by_fact": self.by_fact(),
+            "verdicts": [v.as_dict() for v in self.verdicts],
+        }
 
 
 # -- facts from the trace -------------------------------------------------------------------
+
 
 def _wrap_degrees(angle: float) -> float:
     return math.degrees((angle + math.pi) % (2 * math.pi) - math.pi)
@@ -454,8 +495,11 @@ def _blueprint_classes() -> dict[str, str]:
     for attribute in dir(table):
         category = attribute.removesuffix("Models").lower()
         models = getattr(table, attribute)
-        if attribute.endswith("Models") and category in by_lower and \
-                isinstance(models, list | tuple):
+        if (
+            attribute.endswith("Models")
+            and category in by_lower
+            and isinstance(models, list | tuple)
+        ):
             classes.update({model: by_lower[category] for model in models})
     return classes
 
@@ -479,9 +523,11 @@ class Placement:
     direction: Direction
 
     def describe(self) -> str:
-        return (f"{abs(self.ahead):.1f} m {'ahead' if self.ahead >= 0 else 'behind'}, "
-                f"{abs(self.left):.1f} m {'left' if self.left >= 0 else 'right'}, "
-                f"facing {self.facing:+.0f} deg, {self.direction.value}")
+        return (
+            f"{abs(self.ahead):.1f} m {'ahead' if self.ahead >= 0 else 'behind'}, "
+            f"{abs(self.left):.1f} m {'left' if self.left >= 0 else 'right'}, "
+            f"facing {self.facing:+.0f} deg, {self.direction.value}"
+        )
 
 
 def placement(ego: AgentTrace, agent: AgentTrace) -> Placement | None:
@@ -527,7 +573,8 @@ def start_matches(start: Start, where: Placement) -> bool:
         Start.RIGHT_FRONT: right and front,
         Start.LEFT_REAR: left and not front,
         Start.RIGHT_REAR: right and not front,
-        Start.ONCOMING: front and abs(where.facing) > 180 - PARALLEL_DEGREES
+        Start.ONCOMING: front
+        and abs(where.facing) > 180 - PARALLEL_DEGREES
         and where.left > -LANE_HALF,
         Start.OPPOSITE_SIDEWALK: where.left > NEXT_LANE,
     }
@@ -548,23 +595,32 @@ def observed_maneuver(ego: AgentTrace) -> Maneuver | None:
         origin = ego.trajectory[0]
         widest = max((_lateral(origin, p) for p in ego.trajectory), key=abs)
         return Maneuver.LANE_CHANGE_LEFT if widest > 0 else Maneuver.LANE_CHANGE_RIGHT
-    return {EgoManeuver.TURN_LEFT: Maneuver.LEFT_TURN, EgoManeuver.TURN_RIGHT:
-            Maneuver.RIGHT_TURN}.get(coarse, Maneuver.STRAIGHT)
+    return {
+        EgoManeuver.TURN_LEFT: Maneuver.LEFT_TURN,
+        EgoManeuver.TURN_RIGHT: Maneuver.RIGHT_TURN,
+    }.get(coarse, Maneuver.STRAIGHT)
 
 
 def _weather_kind(preset: str) -> tuple[str, str]:
     """(sky, time of day) of a preset: labels say "rain at night", not how hard it rains,
     so the intensity of rain is not judged."""
-    time = "night" if preset.endswith("Night") else \
-        "sunset" if preset.endswith("Sunset") else "noon"
-    for word, sky in (("Rain", "rain"), ("Wet", "wet"), ("Cloudy", "cloudy"),
-                      ("Clear", "clear"), ("Dust", "dust")):
+    time = (
+        "night" if preset.endswith("Night") else "sunset" if preset.endswith("Sunset") else "noon"
+    )
+    for word, sky in (
+        ("Rain", "rain"),
+        ("Wet", "wet"),
+        ("Cloudy", "cloudy"),
+        ("Clear", "clear"),
+        ("Dust", "dust"),
+    ):
         if word in preset:
             return sky, time
     return preset.lower(), time
 
 
 # -- the comparison -------------------------------------------------------------------------
+
 
 @dataclass(frozen=True)
 class _Slot:
@@ -582,8 +638,9 @@ class _Slot:
 def _pair_score(slot: _Slot, where: Placement | None) -> int:
     if where is None:
         return 0
-    return (slot.actor.start is not None and start_matches(slot.actor.start, where)) + \
-        (slot.actor.direction is not None and slot.actor.direction is where.direction)
+    return (slot.actor.start is not None and start_matches(slot.actor.start, where)) + (
+        slot.actor.direction is not None and slot.actor.direction is where.direction
+    )
 
 
 def _best_pairs(scores: list[list[int]]) -> list[tuple[int, int]]:
@@ -594,17 +651,23 @@ def _best_pairs(scores: list[list[int]]) -> list[tuple[int, int]]:
     if not n_slots or not n_agents:
         return []
     if n_slots <= n_agents:
-        candidates = (list(zip(range(n_slots), perm, strict=True))
-                      for perm in permutations(range(n_agents), n_slots))
+        candidates = (
+            list(zip(range(n_slots), perm, strict=True))
+            for perm in permutations(range(n_agents), n_slots)
+        )
     else:
-        candidates = (list(zip(perm, range(n_agents), strict=True))
-                      for perm in permutations(range(n_slots), n_agents))
-    return max(islice(candidates, MAX_ASSIGNMENTS),
-               key=lambda pairs: sum(scores[s][a] for s, a in pairs))
+        candidates = (
+            list(zip(perm, range(n_agents), strict=True))
+            for perm in permutations(range(n_slots), n_agents)
+        )
+    return max(
+        islice(candidates, MAX_ASSIGNMENTS), key=lambda pairs: sum(scores[s][a] for s, a in pairs)
+    )
 
 
-def score_fidelity(truth: Truth, check: CheckResult,
-                   map_features: Collection[str] | None = None) -> Fidelity:
+def score_fidelity(
+    truth: Truth, check: CheckResult, map_features: Collection[str] | None = None
+) -> Fidelity:
     """Compare what ran (the trace of `check`) with the hand-written `truth`.
 
     `map_features` are the features of the map the script ran on (the registry's entry for
@@ -621,8 +684,7 @@ def score_fidelity(truth: Truth, check: CheckResult,
     places = {id(a): placement(ego, a) if ego else None for a in others}
 
     # Labeled actors <- trace agents, class by class.
-    slots = [_Slot(i, n, actor) for i, actor in enumerate(truth.actors)
-             for n in range(actor.count)]
+    slots = [_Slot(i, n, actor) for i, actor in enumerate(truth.actors) for n in range(actor.count)]
     assigned: dict[_Slot, AgentTrace] = {}
     for cls in dict.fromkeys(s.actor.cls for s in slots):
         mine = [s for s in slots if s.actor.cls == cls]
@@ -632,9 +694,15 @@ def score_fidelity(truth: Truth, check: CheckResult,
 
     for index, actor in enumerate(truth.actors):
         found = sum(1 for s in assigned if s.index == index)
-        verdicts.append(Verdict(FactKind.ACTOR, f"{actor.cls}[{index}]",
-                                f"{actor.count} {actor.cls}", f"{found} {actor.cls}",
-                                found == actor.count))
+        verdicts.append(
+            Verdict(
+                FactKind.ACTOR,
+                f"{actor.cls}[{index}]",
+                f"{actor.count} {actor.cls}",
+                f"{found} {actor.cls}",
+                found == actor.count,
+            )
+        )
     for slot in slots:
         verdicts.extend(_placement_verdicts(slot, assigned.get(slot), places))
 
@@ -644,9 +712,15 @@ def score_fidelity(truth: Truth, check: CheckResult,
         prop = next((a for a in extras if observed_class(a) == name), None)
         if prop is not None:
             extras.remove(prop)
-    verdicts.append(Verdict(
-        FactKind.NO_EXTRA_ACTORS, "", "none",
-        ", ".join(f"{a.name} ({observed_class(a)})" for a in extras) or "none", not extras))
+    verdicts.append(
+        Verdict(
+            FactKind.NO_EXTRA_ACTORS,
+            "",
+            "none",
+            ", ".join(f"{a.name} ({observed_class(a)})" for a in extras) or "none",
+            not extras,
+        )
+    )
 
     verdicts.append(_maneuver_verdict(truth.ego_maneuver, ego))
     verdicts.append(_road_verdict(truth.road, ego, others, features))
@@ -654,38 +728,69 @@ def score_fidelity(truth: Truth, check: CheckResult,
     present = [observed_class(a) for a in others]
     for name in truth.required_objects:
         verdicts.append(_object_verdict(name, present, features))
-    verdicts.append(_close_verdict(truth.must_come_close, facts,
-                                   {a.name for a in assigned.values()}))
+    verdicts.append(
+        _close_verdict(truth.must_come_close, facts, {a.name for a in assigned.values()})
+    )
     return Fidelity(executed=True, verdicts=verdicts)
 
 
-def _placement_verdicts(slot: _Slot, agent: AgentTrace | None,
-                        places: Mapping[int, Placement | None]) -> list[Verdict]:
+def _placement_verdicts(
+    slot: _Slot, agent: AgentTrace | None, places: Mapping[int, Placement | None]
+) -> list[Verdict]:
     where = places.get(id(agent)) if agent is not None else None
-    observed = "absent" if agent is None else \
-        f"{agent.name}: {where.describe()}" if where else f"{agent.name}: no trace"
+    observed = (
+        "absent"
+        if agent is None
+        else f"{agent.name}: {where.describe()}"
+        if where
+        else f"{agent.name}: no trace"
+    )
     start, direction = slot.actor.start, slot.actor.direction
-    start_ok = None if start is None or (agent is not None and where is None) else \
-        where is not None and start_matches(start, where)
-    direction_ok = None if direction is None or (agent is not None and where is None) else \
-        where is not None and where.direction is direction
+    start_ok = (
+        None
+        if start is None or (agent is not None and where is None)
+        else where is not None and start_matches(start, where)
+    )
+    direction_ok = (
+        None
+        if direction is None or (agent is not None and where is None)
+        else where is not None and where.direction is direction
+    )
     return [
-        Verdict(FactKind.START, slot.subject(), start.value if start else "not stated",
-                observed, start_ok),
-        Verdict(FactKind.DIRECTION, slot.subject(),
-                direction.value if direction else "not stated", observed, direction_ok),
+        Verdict(
+            FactKind.START,
+            slot.subject(),
+            start.value if start else "not stated",
+            observed,
+            start_ok,
+        ),
+        Verdict(
+            FactKind.DIRECTION,
+            slot.subject(),
+            direction.value if direction else "not stated",
+            observed,
+            direction_ok,
+        ),
     ]
 
 
 def _maneuver_verdict(expected: Maneuver | None, ego: AgentTrace | None) -> Verdict:
     seen = observed_maneuver(ego) if ego is not None else None
-    return Verdict(FactKind.EGO_MANEUVER, "", expected.value if expected else "not stated",
-                   seen.value if seen else "unknown",
-                   None if expected is None or seen is None else seen is expected)
+    return Verdict(
+        FactKind.EGO_MANEUVER,
+        "",
+        expected.value if expected else "not stated",
+        seen.value if seen else "unknown",
+        None if expected is None or seen is None else seen is expected,
+    )
 
 
-def _road_verdict(road: Road | None, ego: AgentTrace | None, others: list[AgentTrace],
-                  features: frozenset[str] | None) -> Verdict:
+def _road_verdict(
+    road: Road | None,
+    ego: AgentTrace | None,
+    others: list[AgentTrace],
+    features: frozenset[str] | None,
+) -> Verdict:
     expected = road.value if road else "not stated"
     if ego is None:
         return Verdict(FactKind.ROAD, "", expected, "no ego", None)
@@ -719,35 +824,50 @@ def _weather_verdict(expected: str | None, facts: SimulationFacts) -> Verdict:
     if not readable:
         return Verdict(FactKind.WEATHER, "", label, seen or "unset", None)
     assert seen is not None
-    match = seen == DEFAULT_WEATHER if expected is None else \
-        _weather_kind(seen) == _weather_kind(expected)
+    match = (
+        seen == DEFAULT_WEATHER
+        if expected is None
+        else _weather_kind(seen) == _weather_kind(expected)
+    )
     return Verdict(FactKind.WEATHER, "", label, seen, match)
 
 
-def _object_verdict(name: str, present: list[str],
-                    features: frozenset[str] | None) -> Verdict:
+def _object_verdict(name: str, present: list[str], features: frozenset[str] | None) -> Verdict:
     if name in PROP_CLASSES:
         count = present.count(name)
-        return Verdict(FactKind.REQUIRED_OBJECT, name, f"a {name} in the scene",
-                       f"{count} {name}", count > 0)
+        return Verdict(
+            FactKind.REQUIRED_OBJECT, name, f"a {name} in the scene", f"{count} {name}", count > 0
+        )
     if features is None:
-        return Verdict(FactKind.REQUIRED_OBJECT, name, f"map with {name}",
-                       "map features unknown", None)
-    return Verdict(FactKind.REQUIRED_OBJECT, name, f"map with {name}",
-                   ", ".join(sorted(features)) or "no features", name in features)
+        return Verdict(
+            FactKind.REQUIRED_OBJECT, name, f"map with {name}", "map features unknown", None
+        )
+    return Verdict(
+        FactKind.REQUIRED_OBJECT,
+        name,
+        f"map with {name}",
+        ", ".join(sorted(features)) or "no features",
+        name in features,
+    )
 
 
-def _close_verdict(expected: bool | None, facts: SimulationFacts,
-                   labeled: set[str]) -> Verdict:
+def _close_verdict(expected: bool | None, facts: SimulationFacts, labeled: set[str]) -> Verdict:
     label = f"within {CLOSE_METRES:g} m of the ego or touching" if expected else "not stated"
     pairs = [p for p in facts.ego_pairs if p.other in labeled] or facts.ego_pairs
     pairs = [p for p in pairs if p.collided or p.min_distance >= 0]
     if not pairs:
-        return Verdict(FactKind.MUST_COME_CLOSE, "", label, "no other agent", None
-                       if expected is None else False)
+        return Verdict(
+            FactKind.MUST_COME_CLOSE,
+            "",
+            label,
+            "no other agent",
+            None if expected is None else False,
+        )
     closest = min(pairs, key=lambda p: (not p.collided, p.min_distance))
-    observed = f"collision with {closest.other}" if closest.collided else \
-        f"{closest.min_distance:.1f} m from {closest.other}"
-    match = None if expected is None else \
-        closest.collided or closest.min_distance < CLOSE_METRES
+    observed = (
+        f"collision with {closest.other}"
+        if closest.collided
+        else f"{closest.min_distance:.1f} m from {closest.other}"
+    )
+    match = None if expected is None else closest.collided or closest.min_distance < CLOSE_METRES
     return Verdict(FactKind.MUST_COME_CLOSE, "", label, observed, match)

@@ -28,8 +28,15 @@ from arise.prompts import load, load_jsonl
 from arise.sections import MarkerKind, begin_marker, parse_marker
 
 #: The criteria, in the order the model answers them and every table shows them.
-CRITERIA: tuple[str, ...] = ("adversary_type", "behavior", "geometry", "weather",
-                             "participants", "requirements", "spawn")
+CRITERIA: tuple[str, ...] = (
+    "adversary_type",
+    "behavior",
+    "geometry",
+    "weather",
+    "participants",
+    "requirements",
+    "spawn",
+)
 MAX_SCORE = 10
 DEFAULT_WEIGHTS: dict[str, float] = dict.fromkeys(CRITERIA, 1.0)
 #: Reasons are capped in the schema (a grammar for the local model), so a call stays short.
@@ -94,8 +101,10 @@ def weights_problem(weights: Mapping[str, Any] | None) -> str | None:
         return None
     unknown = sorted(set(weights) - set(CRITERIA))
     if unknown:
-        return (f"unknown criterion {', '.join(map(repr, unknown))} in the weights; "
-                f"the criteria are {', '.join(CRITERIA)}")
+        return (
+            f"unknown criterion {', '.join(map(repr, unknown))} in the weights; "
+            f"the criteria are {', '.join(CRITERIA)}"
+        )
     for name, value in weights.items():
         if isinstance(value, bool) or not isinstance(value, int | float):
             return f"weight of {name} must be a number, got {value!r}"
@@ -130,12 +139,16 @@ def parse_weights(text: str | None) -> dict[str, float]:
         try:
             given[name] = float(value)
         except ValueError:
-            raise WeightsError(f"weight of {name} must be a number, got {value.strip()!r}") from None
+            raise WeightsError(
+                f"weight of {name} must be a number, got {value.strip()!r}"
+            ) from None
     return resolve_weights(given)
 
 
-def compute_scs(scores: Mapping[str, int | float], weights: Mapping[str, float] | None = None,
-                ) -> float:
+def compute_scs(
+    scores: Mapping[str, int | float],
+    weights: Mapping[str, float] | None = None,
+) -> float:
     """Weighted SCS on 0..1: sum(w * score) / (10 * sum(w)) over the seven criteria."""
     full = resolve_weights(weights)
     missing = [name for name in CRITERIA if name not in scores]
@@ -174,8 +187,15 @@ class Judgement:
     def as_dict(self) -> dict[str, Any]:
         return {
             "scs": self.scs,
-            "criteria": [{"name": name, "score": self.scores[name], "reason": self.reasons[name],
-                          "weight": self.weights[name]} for name in CRITERIA],
+            "criteria": [
+                {
+                    "name": name,
+                    "score": self.scores[name],
+                    "reason": self.reasons[name],
+                    "weight": self.weights[name],
+                }
+                for name in CRITERIA
+            ],
             "provider": self.provider,
             "model": self.model,
             "temperature": self.temperature,
@@ -222,21 +242,27 @@ def input_problem(description: str, script_text: str) -> str | None:
     if not description.strip():
         return "the description is empty: give the scenario description the script was made from"
     if len(description.strip()) > MAX_DESCRIPTION_CHARS:
-        return (f"the description is {len(description.strip())} characters long; "
-                f"the judge takes at most {MAX_DESCRIPTION_CHARS}")
+        return (
+            f"the description is {len(description.strip())} characters long; "
+            f"the judge takes at most {MAX_DESCRIPTION_CHARS}"
+        )
     compact = compact_script(script_text)
     if not compact.strip():
         return "the script is empty (or only comments)"
     if len(compact) > MAX_SCRIPT_CHARS:
-        return (f"the script is {len(compact)} characters long without comments; "
-                f"the judge takes at most {MAX_SCRIPT_CHARS}")
+        return (
+            f"the script is {len(compact)} characters long without comments; "
+            f"the judge takes at most {MAX_SCRIPT_CHARS}"
+        )
     return None
 
 
 def judge_user_message(description: str, script_text: str) -> str:
-    return (f"DESCRIPTION:\n{description.strip()}\n\n"
-            f"SCRIPT:\n{compact_script(script_text)}\n\n"
-            f"Score the seven criteria.")
+    return (
+        f"DESCRIPTION:\n{description.strip()}\n\n"
+        f"SCRIPT:\n{compact_script(script_text)}\n\n"
+        f"Score the seven criteria."
+    )
 
 
 def few_shot_examples() -> list[dict[str, Any]]:
@@ -252,17 +278,24 @@ def judge_messages(description: str, script_text: str) -> list[Message]:
     the local model can reuse its evaluated prefix from one call to the next)."""
     messages = [Message("system", load("judge_system.md").strip())]
     for example in few_shot_examples():
-        messages.append(Message("user", judge_user_message(example["description"],
-                                                           example["script"])))
+        messages.append(
+            Message("user", judge_user_message(example["description"], example["script"]))
+        )
         answer = JudgeAnswer.model_validate(example["answer"])
         messages.append(Message("assistant", answer.model_dump_json()))
     messages.append(Message("user", judge_user_message(description, script_text)))
     return messages
 
 
-def judge_script(description: str, script_text: str, provider: BaseProvider, *,
-                 temperature: float = 0.0, seed: int | None = 0,
-                 weights: Mapping[str, float] | None = None) -> Judgement:
+def judge_script(
+    description: str,
+    script_text: str,
+    provider: BaseProvider,
+    *,
+    temperature: float = 0.0,
+    seed: int | None = 0,
+    weights: Mapping[str, float] | None = None,
+) -> Judgement:
     """Ask the model for the seven scores of one (description, script) pair.
 
     Bad input (see ``input_problem``) and bad weights raise JudgeInputError / WeightsError: check
@@ -273,9 +306,13 @@ def judge_script(description: str, script_text: str, provider: BaseProvider, *,
     problem = input_problem(description, script_text)
     if problem:
         raise JudgeInputError(problem)
-    completion = provider.complete(judge_messages(description, script_text),
-                                   temperature=temperature, max_tokens=MAX_TOKENS,
-                                   schema=JudgeAnswer, seed=seed)
+    completion = provider.complete(
+        judge_messages(description, script_text),
+        temperature=temperature,
+        max_tokens=MAX_TOKENS,
+        schema=JudgeAnswer,
+        seed=seed,
+    )
     answer = completion.parsed
     if not isinstance(answer, JudgeAnswer):  # complete() with a schema always parses
         raise LLMError(f"the judge's reply was not parsed: {completion.text[:80]!r}")
@@ -331,8 +368,7 @@ class Consistency:
     @property
     def criteria(self) -> dict[str, Stats]:
         """Per criterion, the spread of the raw 0..10 scores."""
-        return {name: Stats.of([float(run.scores[name]) for run in self.runs])
-                for name in CRITERIA}
+        return {name: Stats.of([float(run.scores[name]) for run in self.runs]) for name in CRITERIA}
 
     @property
     def usage(self) -> Usage:
@@ -351,9 +387,16 @@ class Consistency:
         }
 
 
-def consistency(description: str, script_text: str, provider: BaseProvider, *, repeat: int = 10,
-                temperature: float = 0.0, seed: int | None = 0,
-                weights: Mapping[str, float] | None = None) -> Consistency:
+def consistency(
+    description: str,
+    script_text: str,
+    provider: BaseProvider,
+    *,
+    repeat: int = 10,
+    temperature: float = 0.0,
+    seed: int | None = 0,
+    weights: Mapping[str, float] | None = None,
+) -> Consistency:
     """Judge one pair ``repeat`` times, with seed, seed+1, ... (so each repeat is its own
     request for the cache and for cassettes, whatever the temperature).
 
@@ -369,9 +412,16 @@ def consistency(description: str, script_text: str, provider: BaseProvider, *, r
     last: LLMError | None = None
     for index in range(repeat):
         try:
-            runs.append(judge_script(description, script_text, provider,
-                                     temperature=temperature, seed=base + index,
-                                     weights=weights))
+            runs.append(
+                judge_script(
+                    description,
+                    script_text,
+                    provider,
+                    temperature=temperature,
+                    seed=base + index,
+                    weights=weights,
+                )
+            )
         except StructuredOutputFailed as error:
             failures.append(f"seed {base + index}: {error}")
             last = error

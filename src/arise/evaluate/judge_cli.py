@@ -70,15 +70,19 @@ def load_pair(description: str, script: Path) -> tuple[str, str, Path]:
     if script.is_dir():
         scenic = script / "scenario.scenic"
         if not scenic.is_file():
-            raise UserMistake(f"{script} is a folder without scenario.scenic; give a .scenic "
-                              "file or a folder written by `arise generate`")
+            raise UserMistake(
+                f"{script} is a folder without scenario.scenic; give a .scenic "
+                "file or a folder written by `arise generate`"
+            )
         if description.strip() == "-":
             report = script / "report.json"
             try:
                 data = json.loads(report.read_text(encoding="utf-8"))
             except FileNotFoundError:
-                raise UserMistake(f"{script} has no report.json to take the description from; "
-                                  "give the description instead of '-'") from None
+                raise UserMistake(
+                    f"{script} has no report.json to take the description from; "
+                    "give the description instead of '-'"
+                ) from None
             except (json.JSONDecodeError, UnicodeDecodeError) as error:
                 raise UserMistake(f"{report} is not JSON ({error})") from None
             found = data.get("description") if isinstance(data, dict) else None
@@ -87,8 +91,10 @@ def load_pair(description: str, script: Path) -> tuple[str, str, Path]:
             description = found
         script = scenic
     elif description.strip() == "-":
-        raise UserMistake("'-' takes the description from report.json, which only a folder "
-                          "written by `arise generate` has; give the description in words")
+        raise UserMistake(
+            "'-' takes the description from report.json, which only a folder "
+            "written by `arise generate` has; give the description in words"
+        )
     if not script.is_file():
         raise UserMistake(f"no such script: {script}")
     try:
@@ -102,16 +108,26 @@ def load_pair(description: str, script: Path) -> tuple[str, str, Path]:
 
 
 def judge_command(
-    description: Annotated[str, typer.Argument(
-        help="The scenario description the script was made from; '-' takes it from "
-             "SCRIPT/report.json.")],
-    script: Annotated[Path, typer.Argument(
-        help="A .scenic file, or a folder written by `arise generate`.")],
-    repeat: Annotated[int, typer.Option(
-        help="Judge the same pair N times (seed, seed+1, ...) and show the spread.")] = 1,
-    weights: Annotated[str | None, typer.Option(
-        help="Criterion weights, e.g. adversary_type=2,behavior=1.5 (the rest stay 1).")]
-    = None,
+    description: Annotated[
+        str,
+        typer.Argument(
+            help="The scenario description the script was made from; '-' takes it from "
+            "SCRIPT/report.json."
+        ),
+    ],
+    script: Annotated[
+        Path, typer.Argument(help="A .scenic file, or a folder written by `arise generate`.")
+    ],
+    repeat: Annotated[
+        int,
+        typer.Option(help="Judge the same pair N times (seed, seed+1, ...) and show the spread."),
+    ] = 1,
+    weights: Annotated[
+        str | None,
+        typer.Option(
+            help="Criterion weights, e.g. adversary_type=2,behavior=1.5 (the rest stay 1)."
+        ),
+    ] = None,
     provider: ProviderOption = None,
     model: ModelOption = None,
     temperature: Annotated[float, typer.Option(help="Sampling temperature.")] = 0.0,
@@ -131,16 +147,29 @@ def judge_command(
     text_description, script_text, script = load_pair(description, script)
 
     overrides: dict[str, Any] = {"model": model} if model else {}
-    llm = get_provider(provider, cache=False if no_cache else None, record=record,
-                       replay=replay, **overrides)
+    llm = get_provider(
+        provider, cache=False if no_cache else None, record=record, replay=replay, **overrides
+    )
     with llm:
         if repeat == 1:
             result: Judgement | Consistency = judge_script(
-                text_description, script_text, llm, temperature=temperature, seed=seed,
-                weights=chosen)
+                text_description,
+                script_text,
+                llm,
+                temperature=temperature,
+                seed=seed,
+                weights=chosen,
+            )
         else:
-            result = consistency(text_description, script_text, llm, repeat=repeat,
-                                 temperature=temperature, seed=seed, weights=chosen)
+            result = consistency(
+                text_description,
+                script_text,
+                llm,
+                repeat=repeat,
+                temperature=temperature,
+                seed=seed,
+                weights=chosen,
+            )
 
     if as_json:
         payload = {"description": text_description, "script": str(script), **result.as_dict()}
@@ -150,8 +179,10 @@ def judge_command(
         _print_judgement(result)
     else:
         if temperature == 0:
-            errors.print("[dim]note: at temperature 0 a deterministic model (the local one) "
-                         "gives the same answer for every seed; try --temperature 0.7[/dim]")
+            errors.print(
+                "[dim]note: at temperature 0 a deterministic model (the local one) "
+                "gives the same answer for every seed; try --temperature 0.7[/dim]"
+            )
         _print_consistency(result)
 
 
@@ -174,26 +205,40 @@ def _print_judgement(result: Judgement) -> None:
         table.add_row(*row)
     console.print(table)
     source = "cache" if result.cached else f"{result.seconds:.1f} s"
-    console.print(f"[bold]SCS {100 * result.scs:.2f} %[/bold]  [dim]({escape(result.model)}, "
-                  f"{source}, {result.usage.prompt_tokens} prompt + "
-                  f"{result.usage.completion_tokens} completion tokens)[/dim]", highlight=False)
+    console.print(
+        f"[bold]SCS {100 * result.scs:.2f} %[/bold]  [dim]({escape(result.model)}, "
+        f"{source}, {result.usage.prompt_tokens} prompt + "
+        f"{result.usage.completion_tokens} completion tokens)[/dim]",
+        highlight=False,
+    )
 
 
 def _print_consistency(result: Consistency) -> None:
-    table = Table(show_edge=False, pad_edge=False,
-                  title=f"{len(result.runs)} judgements of the same script (population std)")
+    table = Table(
+        show_edge=False,
+        pad_edge=False,
+        title=f"{len(result.runs)} judgements of the same script (population std)",
+    )
     for column in ("criterion", "min", "max", "mean", "std"):
         table.add_column(column, justify="left" if column == "criterion" else "right")
     for name, stats in result.criteria.items():
-        table.add_row(name, f"{stats.min:g}", f"{stats.max:g}", f"{stats.mean:.2f}",
-                      f"{stats.std:.2f}")
+        table.add_row(
+            name, f"{stats.min:g}", f"{stats.max:g}", f"{stats.mean:.2f}", f"{stats.std:.2f}"
+        )
     scs = result.scs
-    table.add_row("[bold]SCS %[/bold]", f"{100 * scs.min:.2f}", f"{100 * scs.max:.2f}",
-                  f"{100 * scs.mean:.2f}", f"{100 * scs.std:.2f} pp")
+    table.add_row(
+        "[bold]SCS %[/bold]",
+        f"{100 * scs.min:.2f}",
+        f"{100 * scs.max:.2f}",
+        f"{100 * scs.mean:.2f}",
+        f"{100 * scs.std:.2f} pp",
+    )
     console.print(table)
     for line in result.failures:
         console.print(f"[yellow]failed:[/yellow] {escape(line)}", highlight=False)
     usage = result.usage
-    console.print(f"[dim]{usage.calls} calls, {usage.seconds:.1f} s, {usage.prompt_tokens} "
-                  f"prompt + {usage.completion_tokens} completion tokens[/dim]",
-                  highlight=False)
+    console.print(
+        f"[dim]{usage.calls} calls, {usage.seconds:.1f} s, {usage.prompt_tokens} "
+        f"prompt + {usage.completion_tokens} completion tokens[/dim]",
+        highlight=False,
+    )

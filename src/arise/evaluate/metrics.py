@@ -31,8 +31,7 @@ def rcr(runs: Sequence[RunRecord]) -> float | None:
     return statistics.mean(repaired) if repaired else None
 
 
-def _per_executable(runs: Sequence[RunRecord], value: Callable[[RunRecord], float]
-                    ) -> float | None:
+def _per_executable(runs: Sequence[RunRecord], value: Callable[[RunRecord], float]) -> float | None:
     """What all runs of a group spent, divided by the executable scripts they produced."""
     executed = sum(r.ok for r in runs)
     return sum(value(r) for r in runs) / executed if executed else None
@@ -75,13 +74,17 @@ def mean_conformity(runs: Sequence[RunRecord]) -> float | None:
 
 def collision_rate(runs: Sequence[RunRecord]) -> float | None:
     judged = [r for r in runs if r.ok and r.criticality]
-    return sum(bool(r.criticality and r.criticality.get("collision")) for r in judged) / len(
-        judged) if judged else None
+    return (
+        sum(bool(r.criticality and r.criticality.get("collision")) for r in judged) / len(judged)
+        if judged
+        else None
+    )
 
 
 def _criticality_mean(name: str) -> Callable[[Sequence[RunRecord]], float | None]:
     def metric(runs: Sequence[RunRecord]) -> float | None:
         return _mean((r.criticality or {}).get(name) for r in runs if r.ok)
+
     return metric
 
 
@@ -126,8 +129,9 @@ def categories(runs: Iterable[RunRecord]) -> list[str]:
     return sorted({run.task.category for run in runs})
 
 
-def by_category(runs: Sequence[RunRecord], metric: Metric, names: Sequence[str]
-                ) -> tuple[dict[str, float | None], float | None]:
+def by_category(
+    runs: Sequence[RunRecord], metric: Metric, names: Sequence[str]
+) -> tuple[dict[str, float | None], float | None]:
     """The metric per category and the mean of the category values (the 'Average' column)."""
     values = {name: metric([r for r in runs if r.task.category == name]) for name in names}
     return values, _mean(values.values())

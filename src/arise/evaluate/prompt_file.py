@@ -26,13 +26,16 @@ class PromptFileError(AriseError):
     """A prompt file we cannot read, with the file and line in the message."""
 
 
-def _prompt(index: int, description: object, category: object, prompt_id: object,
-            where: str) -> BenchPrompt:
+def _prompt(
+    index: int, description: object, category: object, prompt_id: object, where: str
+) -> BenchPrompt:
     if not isinstance(description, str) or not description.strip():
         raise PromptFileError(f"{where}: no description")
-    return BenchPrompt(id=str(prompt_id or f"p{index:03d}").strip(),
-                       description=description.strip(),
-                       category=str(category or UNCATEGORISED).strip() or UNCATEGORISED)
+    return BenchPrompt(
+        id=str(prompt_id or f"p{index:03d}").strip(),
+        description=description.strip(),
+        category=str(category or UNCATEGORISED).strip() or UNCATEGORISED,
+    )
 
 
 def _with_truth(prompt: BenchPrompt, truth: object, where: str) -> BenchPrompt:
@@ -67,8 +70,13 @@ def read_prompts(path: Path) -> list[BenchPrompt]:
                 raise PromptFileError(f"{path}:{number}: not JSON ({error.msg})") from error
             if not isinstance(row, dict):
                 raise PromptFileError(f"{path}:{number}: expected an object per line")
-            prompt = _prompt(len(prompts) + 1, row.get("description", row.get("text")),
-                             row.get("category"), row.get("id"), f"{path}:{number}")
+            prompt = _prompt(
+                len(prompts) + 1,
+                row.get("description", row.get("text")),
+                row.get("category"),
+                row.get("id"),
+                f"{path}:{number}",
+            )
             if row.get("truth") is not None:
                 prompt = _with_truth(prompt, row["truth"], f"{path}:{number}")
             prompts.append(prompt)
@@ -77,15 +85,23 @@ def read_prompts(path: Path) -> list[BenchPrompt]:
         if not reader.fieldnames or "description" not in reader.fieldnames:
             raise PromptFileError(f"{path}: the CSV needs a header with a 'description' column")
         for number, row in enumerate(reader, 2):
-            prompts.append(_prompt(len(prompts) + 1, row.get("description"),
-                                   row.get("category"), row.get("id"), f"{path}:{number}"))
+            prompts.append(
+                _prompt(
+                    len(prompts) + 1,
+                    row.get("description"),
+                    row.get("category"),
+                    row.get("id"),
+                    f"{path}:{number}",
+                )
+            )
     else:
         for number, line in enumerate(text.splitlines(), 1):
             if not line.strip() or line.lstrip().startswith("#"):
                 continue
             category, _, description = line.rpartition("\t")
-            prompts.append(_prompt(len(prompts) + 1, description, category or None, None,
-                                   f"{path}:{number}"))
+            prompts.append(
+                _prompt(len(prompts) + 1, description, category or None, None, f"{path}:{number}")
+            )
     if not prompts:
         raise PromptFileError(f"{path}: no prompts in it")
     seen: set[str] = set()

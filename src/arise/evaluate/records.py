@@ -56,12 +56,18 @@ class AttemptRecord:
         diagnostic = attempt.get("diagnostic") or {}
         llm = attempt.get("llm") or {}
         message = diagnostic.get("message")
-        return cls(index=attempt["index"], kind=attempt["kind"], ok=attempt["ok"],
-                   stage=diagnostic.get("stage"), error_type=diagnostic.get("error_type"),
-                   message=message[:MESSAGE_CHARS] if message is not None else None,
-                   section=diagnostic.get("section"), check_seconds=attempt["check_seconds"],
-                   llm_calls=llm.get("calls", 0),
-                   tokens=llm.get("prompt_tokens", 0) + llm.get("completion_tokens", 0))
+        return cls(
+            index=attempt["index"],
+            kind=attempt["kind"],
+            ok=attempt["ok"],
+            stage=diagnostic.get("stage"),
+            error_type=diagnostic.get("error_type"),
+            message=message[:MESSAGE_CHARS] if message is not None else None,
+            section=diagnostic.get("section"),
+            check_seconds=attempt["check_seconds"],
+            llm_calls=llm.get("calls", 0),
+            tokens=llm.get("prompt_tokens", 0) + llm.get("completion_tokens", 0),
+        )
 
 
 @dataclass
@@ -118,19 +124,33 @@ class RunRecord:
         return asdict(self)
 
     @classmethod
-    def from_report(cls, task: BenchTask, report: dict[str, Any], *, out_dir: str | None,
-                    criticality: dict[str, Any] | None) -> RunRecord:
+    def from_report(
+        cls,
+        task: BenchTask,
+        report: dict[str, Any],
+        *,
+        out_dir: str | None,
+        criticality: dict[str, Any] | None,
+    ) -> RunRecord:
         """The row of a run from its report (see `Generation.report`)."""
         llm = report.get("llm") or {}
-        return cls(task=task, status=report["status"], first_pass_ok=report["first_pass_ok"],
-                   repairs=report["repairs"], llm_calls=llm.get("calls", 0),
-                   prompt_tokens=llm.get("prompt_tokens", 0),
-                   completion_tokens=llm.get("completion_tokens", 0),
-                   seconds=report["seconds"], message=report["message"], out_dir=out_dir,
-                   spec=report["spec"], conformity=report["conformity"],
-                   criticality=criticality,
-                   attempts=[AttemptRecord.from_report(a) for a in report["attempts"]],
-                   sandbox=_sandbox_label(report.get("sandbox")))
+        return cls(
+            task=task,
+            status=report["status"],
+            first_pass_ok=report["first_pass_ok"],
+            repairs=report["repairs"],
+            llm_calls=llm.get("calls", 0),
+            prompt_tokens=llm.get("prompt_tokens", 0),
+            completion_tokens=llm.get("completion_tokens", 0),
+            seconds=report["seconds"],
+            message=report["message"],
+            out_dir=out_dir,
+            spec=report["spec"],
+            conformity=report["conformity"],
+            criticality=criticality,
+            attempts=[AttemptRecord.from_report(a) for a in report["attempts"]],
+            sandbox=_sandbox_label(report.get("sandbox")),
+        )
 
     @classmethod
     def from_dict(cls, data: dict[str, Any]) -> RunRecord:

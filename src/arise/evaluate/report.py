@@ -19,11 +19,17 @@ from arise.validate.types import confinement_summary
 TABLE_METRICS = [("ESR single", "single"), ("ESR total", "total"), ("RCR", "total")]
 COST_METRICS = ["LLM calls / exec", "tokens / exec", "seconds / exec", "median s (exec)"]
 QUALITY_METRICS = ["fidelity", "conformity", "SCS"]
-CRITICALITY_METRICS = ["collision rate", "min distance (m)", "min TTC (s)",
-                       "route completion"]
-PAPER_ORDER = ["straight_obstacle", "turning_obstacle", "lane_changing", "vehicle_passing",
-               "red_light_running", "unprotected_left_turn", "right_turn",
-               "crossing_negotiation"]
+CRITICALITY_METRICS = ["collision rate", "min distance (m)", "min TTC (s)", "route completion"]
+PAPER_ORDER = [
+    "straight_obstacle",
+    "turning_obstacle",
+    "lane_changing",
+    "vehicle_passing",
+    "red_light_running",
+    "unprotected_left_turn",
+    "right_turn",
+    "crossing_negotiation",
+]
 
 
 @dataclass(frozen=True)
@@ -42,8 +48,9 @@ def ordered_categories(runs: Sequence[RunRecord]) -> list[str]:
 def _format(value: float | None, metric: str) -> str:
     if value is None or (isinstance(value, float) and math.isnan(value)):
         return "N/A"
-    if metric in ("SCS", "conformity", "collision rate", "route completion") or \
-            metric.startswith("ESR"):
+    if metric in ("SCS", "conformity", "collision rate", "route completion") or metric.startswith(
+        "ESR"
+    ):
         return f"{value:.3f}"
     if metric.startswith(("tokens", "seconds", "median")):
         return f"{value:.0f}"
@@ -62,15 +69,19 @@ def cells(runs: Sequence[RunRecord], metrics: Sequence[str]) -> list[Cell]:
     return found
 
 
-def _markdown_table(runs: Sequence[RunRecord], metrics: Sequence[str],
-                    with_pass: bool = False) -> str:
+def _markdown_table(
+    runs: Sequence[RunRecord], metrics: Sequence[str], with_pass: bool = False
+) -> str:
     names = ordered_categories(runs)
     passes = dict(TABLE_METRICS)
     head = ["Metric", "Method", "T"] + (["Pass"] if with_pass else []) + names + ["Average"]
     lines = ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
     for cell in cells(runs, metrics):
-        row = [cell.metric.split(" ")[0] if with_pass else cell.metric, cell.group.mode,
-               f"{cell.group.temperature:g}"]
+        row = [
+            cell.metric.split(" ")[0] if with_pass else cell.metric,
+            cell.group.mode,
+            f"{cell.group.temperature:g}",
+        ]
         if with_pass:
             row.append(passes.get(cell.metric, ""))
         row += [_format(cell.values[n], cell.metric) for n in names]
@@ -84,36 +95,75 @@ def table_csv(runs: Sequence[RunRecord]) -> str:
     buffer = io.StringIO()
     writer = csv.writer(buffer)
     writer.writerow(["metric", "mode", "temperature", *names, "average"])
-    for cell in cells(runs, [m for m, _ in TABLE_METRICS] + QUALITY_METRICS + COST_METRICS
-                      + CRITICALITY_METRICS):
-        writer.writerow([cell.metric, cell.group.mode, cell.group.temperature,
-                         *("" if cell.values[n] is None else round(cell.values[n] or 0, 4)
-                           for n in names),
-                         "" if cell.average is None else round(cell.average, 4)])
+    for cell in cells(
+        runs, [m for m, _ in TABLE_METRICS] + QUALITY_METRICS + COST_METRICS + CRITICALITY_METRICS
+    ):
+        writer.writerow(
+            [
+                cell.metric,
+                cell.group.mode,
+                cell.group.temperature,
+                *("" if cell.values[n] is None else round(cell.values[n] or 0, 4) for n in names),
+                "" if cell.average is None else round(cell.average, 4),
+            ]
+        )
     return buffer.getvalue()
 
 
 def runs_csv(runs: Sequence[RunRecord]) -> str:
     buffer = io.StringIO()
     writer = csv.writer(buffer)
-    writer.writerow(["prompt_id", "category", "mode", "temperature", "run", "status",
-                     "first_pass_ok", "repairs", "llm_calls", "tokens", "seconds",
-                     "conformity", "scs", "collision", "min_distance", "min_ttc",
-                     "route_completion", "message"])
+    writer.writerow(
+        [
+            "prompt_id",
+            "category",
+            "mode",
+            "temperature",
+            "run",
+            "status",
+            "first_pass_ok",
+            "repairs",
+            "llm_calls",
+            "tokens",
+            "seconds",
+            "conformity",
+            "scs",
+            "collision",
+            "min_distance",
+            "min_ttc",
+            "route_completion",
+            "message",
+        ]
+    )
     for r in runs:
         crit = r.criticality or {}
-        writer.writerow([r.task.prompt_id, r.task.category, r.task.mode, r.task.temperature,
-                         r.task.run_index, r.status, int(r.first_pass_ok), r.repairs,
-                         r.llm_calls, r.tokens, round(r.seconds, 1), r.conformity_score,
-                         r.scs, crit.get("collision"), crit.get("min_distance"),
-                         crit.get("min_ttc"), crit.get("route_completion"),
-                         (r.message or "")[:200]])
+        writer.writerow(
+            [
+                r.task.prompt_id,
+                r.task.category,
+                r.task.mode,
+                r.task.temperature,
+                r.task.run_index,
+                r.status,
+                int(r.first_pass_ok),
+                r.repairs,
+                r.llm_calls,
+                r.tokens,
+                round(r.seconds, 1),
+                r.conformity_score,
+                r.scs,
+                crit.get("collision"),
+                crit.get("min_distance"),
+                crit.get("min_ttc"),
+                crit.get("route_completion"),
+                (r.message or "")[:200],
+            ]
+        )
     return buffer.getvalue()
 
 
 def _failure_kinds(runs: Sequence[RunRecord]) -> str:
-    first = Counter(f"{a.stage}: {a.error_type}" for r in runs for a in r.attempts[:1]
-                    if not a.ok)
+    first = Counter(f"{a.stage}: {a.error_type}" for r in runs for a in r.attempts[:1] if not a.ok)
     fixes = Counter(a.kind for r in runs for a in r.attempts[1:])
     if not first and not fixes:
         return "Every run that produced a script ran on its first attempt."
@@ -126,20 +176,33 @@ def _failure_kinds(runs: Sequence[RunRecord]) -> str:
 
 
 def _mismatches(runs: Sequence[RunRecord]) -> str:
-    counts = Counter(m.split(":")[0] for r in runs if r.ok
-                     for m in (r.conformity or {}).get("mismatches", []))
+    counts = Counter(
+        m.split(":")[0] for r in runs if r.ok for m in (r.conformity or {}).get("mismatches", [])
+    )
     if not counts:
         return "No mismatches."
-    return "\n".join(["| check | runs that disagree |", "|---|---|"] +
-                     [f"| {name} | {count} |" for name, count in counts.most_common()])
+    return "\n".join(
+        ["| check | runs that disagree |", "|---|---|"]
+        + [f"| {name} | {count} |" for name, count in counts.most_common()]
+    )
 
 
 def _settings(meta: dict[str, object]) -> str:
     options = meta.get("options")
     options = options if isinstance(options, dict) else {}
-    shown = {key: options.get(key) for key in ("provider", "model", "max_repairs",
-                                                "spawn_attempts", "simulator", "seed",
-                                                "semantic_gate") if key in options}
+    shown = {
+        key: options.get(key)
+        for key in (
+            "provider",
+            "model",
+            "max_repairs",
+            "spawn_attempts",
+            "simulator",
+            "seed",
+            "semantic_gate",
+        )
+        if key in options
+    }
     shown["provider"] = shown.get("provider") or "embedded local model"
     shown.update({key: meta[key] for key in ("modes", "temperatures", "runs") if key in meta})
     return "Settings: " + ", ".join(f"{key} = {value}" for key, value in shown.items()) + "."
@@ -148,36 +211,59 @@ def _settings(meta: dict[str, object]) -> str:
 def markdown(runs: Sequence[RunRecord], title: str, meta: dict[str, object]) -> str:
     statuses = Counter(r.status for r in runs)
     parts = [
-        f"# {title}", "",
+        f"# {title}",
+        "",
         f"{len(runs)} runs over {len({r.task.prompt_id for r in runs})} prompts; "
-        + ", ".join(f"{n} {s}" for s, n in statuses.most_common()) + ".", "",
-        _settings(meta), "",
+        + ", ".join(f"{n} {s}" for s, n in statuses.most_common())
+        + ".",
+        "",
+        _settings(meta),
+        "",
         "Confinement of the scripts' final checks: "
-        + confinement_summary([r.sandbox for r in runs if r.ok]) + ".", "",
-        "## ESR and RCR per category (the paper's Table I)", "",
+        + confinement_summary([r.sandbox for r in runs if r.ok])
+        + ".",
+        "",
+        "## ESR and RCR per category (the paper's Table I)",
+        "",
         "ESR single: the first assembled script ran. ESR total: it ran after at most the "
         "repair budget. RCR: mean repair iterations, the successful one included, over runs "
         "that failed first and then ran (N/A: no such run). Average: mean of the category "
-        "values.", "",
-        _markdown_table(runs, [m for m, _ in TABLE_METRICS], with_pass=True), "",
-        "## Semantic conformity", "",
+        "values.",
+        "",
+        _markdown_table(runs, [m for m, _ in TABLE_METRICS], with_pass=True),
+        "",
+        "## Semantic conformity",
+        "",
         "fidelity: share of the hand-written facts of the prompt (actor classes and counts, "
         "start sides and directions, ego maneuver, road, weather, required objects, "
         "closeness) that the trace bears out (N/A: the prompt has no truth). conformity: "
         "share of the deterministic facts (adversary class, ego maneuver, road, start "
         "position, reach of the ego's path, weather, other objects) that agree with the "
         "model's own extracted spec, a weaker, second number. SCS: the LLM judge's score "
-        "(N/A when not judged). All over executed runs.", "",
-        _markdown_table(runs, QUALITY_METRICS), "", _mismatches(runs), "",
-        "## Cost per executable script", "",
+        "(N/A when not judged). All over executed runs.",
+        "",
+        _markdown_table(runs, QUALITY_METRICS),
+        "",
+        _mismatches(runs),
+        "",
+        "## Cost per executable script",
+        "",
         "What all runs of a category spent divided by its executable scripts; the median is "
-        "over executed runs.", "",
-        _markdown_table(runs, COST_METRICS), "",
-        "## Criticality from the traces", "",
+        "over executed runs.",
+        "",
+        _markdown_table(runs, COST_METRICS),
+        "",
+        "## Criticality from the traces",
+        "",
         "Between the ego and the adversary in executed runs: collision rate, mean closest "
-        "approach, mean smallest time-to-collision, mean ego route completion.", "",
-        _markdown_table(runs, CRITICALITY_METRICS), "",
-        "## Failures and repairs", "", _failure_kinds(runs), "",
+        "approach, mean smallest time-to-collision, mean ego route completion.",
+        "",
+        _markdown_table(runs, CRITICALITY_METRICS),
+        "",
+        "## Failures and repairs",
+        "",
+        _failure_kinds(runs),
+        "",
         "Plots: `esr_by_category.png`, `repair_iterations.png`. Per-run rows: `runs.csv`.",
     ]
     return "\n".join(parts) + "\n"
@@ -195,8 +281,12 @@ def plot_esr(runs: Sequence[RunRecord], path: Path) -> None:
     width = 0.8 / max(1, len(bars))
     for i, cell in enumerate(bars):
         xs = [k + i * width for k in range(len(names))]
-        axis.bar(xs, [cell.values[n] or 0 for n in names], width,
-                 label=f"{cell.metric} ({cell.group.label()})")
+        axis.bar(
+            xs,
+            [cell.values[n] or 0 for n in names],
+            width,
+            label=f"{cell.metric} ({cell.group.label()})",
+        )
     axis.set_xticks([k + 0.4 - width / 2 for k in range(len(names))])
     axis.set_xticklabels([n.replace("_", "\n") for n in names], fontsize=8)
     axis.set_ylim(0, 1.05)
@@ -234,13 +324,20 @@ def _save(figure: object, path: Path) -> None:
     partial.replace(path)
 
 
-def write_report(runs: Sequence[RunRecord], out_dir: Path, meta: dict[str, object],
-                 title: str = "arise benchmark report") -> list[Path]:
+def write_report(
+    runs: Sequence[RunRecord],
+    out_dir: Path,
+    meta: dict[str, object],
+    title: str = "arise benchmark report",
+) -> list[Path]:
     """All report files into out_dir (each written whole or not at all)."""
     out_dir.mkdir(parents=True, exist_ok=True)
     written = []
-    for name, text in (("report.md", markdown(runs, title, meta)), ("table.csv", table_csv(runs)),
-                       ("runs.csv", runs_csv(runs))):
+    for name, text in (
+        ("report.md", markdown(runs, title, meta)),
+        ("table.csv", table_csv(runs)),
+        ("runs.csv", runs_csv(runs)),
+    ):
         write_atomic(out_dir / name, text)
         written.append(out_dir / name)
     plot_esr(runs, out_dir / "esr_by_category.png")

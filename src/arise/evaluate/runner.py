@@ -30,6 +30,8 @@ EXECUTORS = ("local", "ray")
 
 class ExecutorUnavailable(AriseError):
     """The benchmark cannot run on the executor asked for (unknown, or Ray is missing)."""
+
+
 OnRecord = Callable[[RunRecord], None]
 
 
@@ -51,10 +53,21 @@ class BenchConfig:
 
 def plan(config: BenchConfig) -> list[BenchTask]:
     """Every task in a stable order: run by run, so an early stop covers all prompts."""
-    return [BenchTask(prompt_id=p.id, category=p.category, description=p.description,
-                      mode=mode.value, temperature=temperature, run_index=run, truth=p.truth)
-            for run in range(config.runs) for temperature in config.temperatures
-            for mode in config.modes for p in config.prompts]
+    return [
+        BenchTask(
+            prompt_id=p.id,
+            category=p.category,
+            description=p.description,
+            mode=mode.value,
+            temperature=temperature,
+            run_index=run,
+            truth=p.truth,
+        )
+        for run in range(config.runs)
+        for temperature in config.temperatures
+        for mode in config.modes
+        for p in config.prompts
+    ]
 
 
 def pending(config: BenchConfig, store: BenchStore) -> list[BenchTask]:
@@ -64,13 +77,23 @@ def pending(config: BenchConfig, store: BenchStore) -> list[BenchTask]:
 
 def task_options(base: GenerateOptions, task: BenchTask) -> GenerateOptions:
     seed = None if base.seed is None else base.seed + task.run_index
-    return base.model_copy(update={"mode": Mode(task.mode), "temperature": task.temperature,
-                                   "run_index": task.run_index, "seed": seed})
+    return base.model_copy(
+        update={
+            "mode": Mode(task.mode),
+            "temperature": task.temperature,
+            "run_index": task.run_index,
+            "seed": seed,
+        }
+    )
 
 
 def task_dir(out_root: Path, task: BenchTask) -> Path:
-    return out_root / "runs" / task.prompt_id / (
-        f"{task.mode}-t{task.temperature:g}-r{task.run_index}")
+    return (
+        out_root
+        / "runs"
+        / task.prompt_id
+        / (f"{task.mode}-t{task.temperature:g}-r{task.run_index}")
+    )
 
 
 def record_of(task: BenchTask, run: Generation, out_dir: Path | None) -> RunRecord:
@@ -78,12 +101,17 @@ def record_of(task: BenchTask, run: Generation, out_dir: Path | None) -> RunReco
     the criticality of the script that ran."""
     final = run.final_check
     crit = criticality(final.simulation if final is not None and run.ok else None)
-    return RunRecord.from_report(task, run.report(), out_dir=str(out_dir) if out_dir else None,
-                                 criticality=crit.as_dict() if crit else None)
+    return RunRecord.from_report(
+        task,
+        run.report(),
+        out_dir=str(out_dir) if out_dir else None,
+        criticality=crit.as_dict() if crit else None,
+    )
 
 
-def fidelity_of(generator: Generator, task: BenchTask,
-                check: CheckResult | None) -> dict[str, Any] | None:
+def fidelity_of(
+    generator: Generator, task: BenchTask, check: CheckResult | None
+) -> dict[str, Any] | None:
     """The run's trace against the prompt's hand-written truth (never against its spec)."""
     if task.truth is None:
         return None
@@ -110,8 +138,14 @@ def add_to_report(path: Path, key: str, value: Any) -> None:
 class TaskRunner:
     """Runs tasks one after another with one Generator; lives in whichever process runs it."""
 
-    def __init__(self, base: GenerateOptions, out_root: Path, judge: bool = False,
-                 judge_provider: str | None = None, judge_model: str | None = None):
+    def __init__(
+        self,
+        base: GenerateOptions,
+        out_root: Path,
+        judge: bool = False,
+        judge_provider: str | None = None,
+        judge_model: str | None = None,
+    ):
         self.base = base
         self.out_root = out_root
         self.judging = judge
@@ -128,8 +162,7 @@ class TaskRunner:
             from arise.llm.registry import get_provider
 
             overrides: dict[str, Any] = {"model": self.judge_model} if self.judge_model else {}
-            self._judge_llm = get_provider(self.judge_provider, cache=self.base.cache,
-                                           **overrides)
+            self._judge_llm = get_provider(self.judge_provider, cache=self.base.cache, **overrides)
         return self._judge_llm
 
     def generator_for(self, task: BenchTask) -> Generator:
@@ -149,15 +182,20 @@ class TaskRunner:
             record.fidelity = fidelity_of(generator, task, generation.final_check)
             add_to_report(out_dir / "report.json", "fidelity", record.fidelity)
         if self.judging and generation.ok:
-            record.judge = judge_run(self.judge_llm(generator), task, out_dir,
-                                     generator.options.seed)
+            record.judge = judge_run(
+                self.judge_llm(generator), task, out_dir, generator.options.seed
+            )
         return record
 
     def judge(self, record: RunRecord) -> dict[str, Any]:
         """Judge a run finished earlier (a benchmark first run without --judge)."""
         generator = self.generator_for(record.task)
-        return judge_run(self.judge_llm(generator), record.task, Path(record.out_dir or "."),
-                         generator.options.seed)
+        return judge_run(
+            self.judge_llm(generator),
+            record.task,
+            Path(record.out_dir or "."),
+            generator.options.seed,
+        )
 
     def close(self) -> None:
         if self._generator is not None:
@@ -168,8 +206,9 @@ class TaskRunner:
             self._judge_llm = None
 
 
-def judge_run(judge: UsageLedger, task: BenchTask, out_dir: Path, seed: int | None
-              ) -> dict[str, Any]:
+def judge_run(
+    judge: UsageLedger, task: BenchTask, out_dir: Path, seed: int | None
+) -> dict[str, Any]:
     """SCS of the executed script, or why it could not be judged."""
     from arise.evaluate.judge import judge_script
 
@@ -178,8 +217,7 @@ def judge_run(judge: UsageLedger, task: BenchTask, out_dir: Path, seed: int | No
     except OSError as error:
         return {"scs": None, "error": f"no script to judge: {error}"}
     try:
-        judgement = judge_script(task.description, script, judge,
-                                 temperature=0.0, seed=seed)
+        judgement = judge_script(task.description, script, judge, temperature=0.0, seed=seed)
     except AriseError as error:  # the model failed, or the pair cannot be judged
         return {"scs": None, "error": str(error)}
     return judgement.as_dict()
@@ -187,11 +225,14 @@ def judge_run(judge: UsageLedger, task: BenchTask, out_dir: Path, seed: int | No
 
 # -- executors ------------------------------------------------------------------------------
 
-def run_local(tasks: Sequence[BenchTask], config: BenchConfig, out_root: Path
-              ) -> Iterator[RunRecord]:
+
+def run_local(
+    tasks: Sequence[BenchTask], config: BenchConfig, out_root: Path
+) -> Iterator[RunRecord]:
     if config.workers <= 1:
-        runner = TaskRunner(config.base, out_root, config.judge, config.judge_provider,
-                            config.judge_model)
+        runner = TaskRunner(
+            config.base, out_root, config.judge, config.judge_provider, config.judge_model
+        )
         try:
             for task in tasks:
                 yield runner.run(task)
@@ -202,11 +243,18 @@ def run_local(tasks: Sequence[BenchTask], config: BenchConfig, out_root: Path
     from concurrent.futures import ProcessPoolExecutor, as_completed
 
     context = multiprocessing.get_context("spawn")
-    with ProcessPoolExecutor(max_workers=config.workers, mp_context=context,
-                             initializer=_init_process,
-                             initargs=(config.base.model_dump_json(), str(out_root),
-                                       config.judge, config.judge_provider,
-                                       config.judge_model)) as pool:
+    with ProcessPoolExecutor(
+        max_workers=config.workers,
+        mp_context=context,
+        initializer=_init_process,
+        initargs=(
+            config.base.model_dump_json(),
+            str(out_root),
+            config.judge,
+            config.judge_provider,
+            config.judge_model,
+        ),
+    ) as pool:
         futures = [pool.submit(_run_in_process, json.dumps(task.__dict__)) for task in tasks]
         for future in as_completed(futures):
             yield RunRecord.from_dict(future.result())
@@ -215,11 +263,17 @@ def run_local(tasks: Sequence[BenchTask], config: BenchConfig, out_root: Path
 _PROCESS_RUNNER: TaskRunner | None = None
 
 
-def _init_process(base_json: str, out_root: str, judge: bool, judge_provider: str | None,
-                  judge_model: str | None) -> None:
+def _init_process(
+    base_json: str, out_root: str, judge: bool, judge_provider: str | None, judge_model: str | None
+) -> None:
     global _PROCESS_RUNNER
-    _PROCESS_RUNNER = TaskRunner(GenerateOptions.model_validate_json(base_json),
-                                 Path(out_root), judge, judge_provider, judge_model)
+    _PROCESS_RUNNER = TaskRunner(
+        GenerateOptions.model_validate_json(base_json),
+        Path(out_root),
+        judge,
+        judge_provider,
+        judge_model,
+    )
 
 
 def _run_in_process(task_json: str) -> dict[str, Any]:
@@ -230,53 +284,81 @@ def _run_in_process(task_json: str) -> dict[str, Any]:
 class _RayActor:
     """A TaskRunner inside a Ray actor (created through `ray.remote` at run time)."""
 
-    def __init__(self, base_json: str, out_root: str, judge: bool,
-                 judge_provider: str | None, judge_model: str | None):
-        self.runner = TaskRunner(GenerateOptions.model_validate_json(base_json),
-                                 Path(out_root), judge, judge_provider, judge_model)
+    def __init__(
+        self,
+        base_json: str,
+        out_root: str,
+        judge: bool,
+        judge_provider: str | None,
+        judge_model: str | None,
+    ):
+        self.runner = TaskRunner(
+            GenerateOptions.model_validate_json(base_json),
+            Path(out_root),
+            judge,
+            judge_provider,
+            judge_model,
+        )
 
     def run(self, task_json: str) -> dict[str, Any]:
         return self.runner.run(BenchTask(**json.loads(task_json))).as_dict()
 
 
-def run_ray(tasks: Sequence[BenchTask], config: BenchConfig, out_root: Path
-            ) -> Iterator[RunRecord]:
+def run_ray(tasks: Sequence[BenchTask], config: BenchConfig, out_root: Path) -> Iterator[RunRecord]:
     try:
         import ray
         from ray.util import ActorPool
     except ImportError as error:
-        raise ExecutorUnavailable("the Ray executor needs Ray: pip install 'arise[ray]'"
-                                  ) from error
+        raise ExecutorUnavailable("the Ray executor needs Ray: pip install 'arise[ray]'") from error
     started_here = not ray.is_initialized()
     if started_here:
-        ray.init(address=config.ray_address, include_dashboard=False,
-                 log_to_driver=False, ignore_reinit_error=True,
-                 runtime_env={"env_vars": {k: v for k, v in os.environ.items()
-                                           if k.startswith("ARISE_")}})
+        ray.init(
+            address=config.ray_address,
+            include_dashboard=False,
+            log_to_driver=False,
+            ignore_reinit_error=True,
+            runtime_env={
+                "env_vars": {k: v for k, v in os.environ.items() if k.startswith("ARISE_")}
+            },
+        )
     try:
         actor_class = ray.remote(num_cpus=1)(_RayActor)
-        actors = [actor_class.remote(config.base.model_dump_json(), str(out_root), config.judge,
-                                     config.judge_provider, config.judge_model)
-                  for _ in range(max(1, config.workers))]
+        actors = [
+            actor_class.remote(
+                config.base.model_dump_json(),
+                str(out_root),
+                config.judge,
+                config.judge_provider,
+                config.judge_model,
+            )
+            for _ in range(max(1, config.workers))
+        ]
         pool = ActorPool(actors)
         payloads = [json.dumps(task.__dict__) for task in tasks]
-        for result in pool.map_unordered(lambda actor, payload: actor.run.remote(payload),
-                                         payloads):
+        for result in pool.map_unordered(
+            lambda actor, payload: actor.run.remote(payload), payloads
+        ):
             yield RunRecord.from_dict(result)
     finally:
         if started_here:
             ray.shutdown()
 
 
-def run_bench(config: BenchConfig, store: BenchStore, out_root: Path,
-              on_record: OnRecord | None = None) -> list[RunRecord]:
+def run_bench(
+    config: BenchConfig, store: BenchStore, out_root: Path, on_record: OnRecord | None = None
+) -> list[RunRecord]:
     """Run what the database does not hold yet; every finished run is saved at once."""
     if config.executor not in EXECUTORS:
-        raise ExecutorUnavailable(f"unknown executor '{config.executor}': use one of "
-                                  f"{', '.join(EXECUTORS)}")
-    store.set_meta(options=config.base.model_dump(mode="json"),
-                   modes=[m.value for m in config.modes], temperatures=config.temperatures,
-                   runs=config.runs, prompts=len(config.prompts))
+        raise ExecutorUnavailable(
+            f"unknown executor '{config.executor}': use one of {', '.join(EXECUTORS)}"
+        )
+    store.set_meta(
+        options=config.base.model_dump(mode="json"),
+        modes=[m.value for m in config.modes],
+        temperatures=config.temperatures,
+        runs=config.runs,
+        prompts=len(config.prompts),
+    )
     tasks = pending(config, store)
     executor = run_ray if config.executor == "ray" else run_local
     finished = []
@@ -295,14 +377,14 @@ def unjudged(config: BenchConfig, store: BenchStore) -> list[RunRecord]:
     return [r for r in store.runs() if r.ok and r.judge is None and r.task.key in planned]
 
 
-def judge_missing(config: BenchConfig, store: BenchStore, out_root: Path,
-                  on_judged: OnRecord | None = None) -> int:
+def judge_missing(
+    config: BenchConfig, store: BenchStore, out_root: Path, on_judged: OnRecord | None = None
+) -> int:
     """Score executed runs that have no SCS yet, in this process; each is saved at once."""
     todo = unjudged(config, store)
     if not todo:
         return 0
-    runner = TaskRunner(config.base, out_root, True, config.judge_provider,
-                        config.judge_model)
+    runner = TaskRunner(config.base, out_root, True, config.judge_provider, config.judge_model)
     try:
         for record in todo:
             record.judge = runner.judge(record)
@@ -322,8 +404,7 @@ def recheck(store: BenchStore, on_record: OnRecord | None = None) -> int:
     from arise.validate import check
 
     meta_options = store.meta().get("options")
-    base = GenerateOptions.model_validate(meta_options if isinstance(meta_options, dict)
-                                          else {})
+    base = GenerateOptions.model_validate(meta_options if isinstance(meta_options, dict) else {})
     runner = TaskRunner(base, Path("."))
     count = 0
     try:
@@ -332,10 +413,12 @@ def recheck(store: BenchStore, on_record: OnRecord | None = None) -> int:
             if not record.ok or record.spec is None or not script.is_file():
                 continue
             generator = runner.generator_for(record.task)
-            result = check(script, generator.check_options(), pool=generator.pool,
-                           registry=generator.registry)
+            result = check(
+                script, generator.check_options(), pool=generator.pool, registry=generator.registry
+            )
             record.conformity = generator.conformity_of(
-                ScenarioSpec.model_validate(record.spec), result).as_dict()
+                ScenarioSpec.model_validate(record.spec), result
+            ).as_dict()
             crit = criticality(result.simulation if result.ok else None)
             record.criticality = crit.as_dict() if crit else None
             record.fidelity = fidelity_of(generator, record.task, result)

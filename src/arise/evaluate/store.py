@@ -66,13 +66,16 @@ class BenchStore:
 
     # -- metadata: what the benchmark was started with --------------------------------------
     def meta(self) -> dict[str, Any]:
-        return {key: json.loads(value) for key, value in
-                self._db.execute("SELECT key, value FROM meta")}
+        return {
+            key: json.loads(value) for key, value in self._db.execute("SELECT key, value FROM meta")
+        }
 
     def set_meta(self, **values: Any) -> None:
         with self._db:
-            self._db.executemany("INSERT OR REPLACE INTO meta VALUES (?, ?)",
-                                 [(k, json.dumps(v)) for k, v in values.items()])
+            self._db.executemany(
+                "INSERT OR REPLACE INTO meta VALUES (?, ?)",
+                [(k, json.dumps(v)) for k, v in values.items()],
+            )
 
     # -- runs ----------------------------------------------------------------------------------
     def done_keys(self) -> set[tuple[str, str, float, int]]:
@@ -83,29 +86,61 @@ class BenchStore:
         task, crit = record.task, record.criticality or {}
         with self._db:
             self._db.execute(
-                "DELETE FROM runs WHERE prompt_id=? AND mode=? AND temperature=? "
-                "AND run_index=?", (task.prompt_id, task.mode, task.temperature,
-                                    task.run_index))
+                "DELETE FROM runs WHERE prompt_id=? AND mode=? AND temperature=? AND run_index=?",
+                (task.prompt_id, task.mode, task.temperature, task.run_index),
+            )
             cursor = self._db.execute(
                 "INSERT INTO runs (prompt_id, category, description, mode, temperature, "
                 "run_index, status, first_pass_ok, repairs, llm_calls, prompt_tokens, "
                 "completion_tokens, seconds, message, out_dir, conformity, scs, collision, "
                 "min_distance, min_ttc, route_completion, record, finished_at) "
                 "VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)",
-                (task.prompt_id, task.category, task.description, task.mode, task.temperature,
-                 task.run_index, record.status, int(record.first_pass_ok), record.repairs,
-                 record.llm_calls, record.prompt_tokens, record.completion_tokens,
-                 round(record.seconds, 3), record.message, record.out_dir,
-                 record.conformity_score, record.scs,
-                 None if not crit else int(bool(crit.get("collision"))),
-                 crit.get("min_distance"), crit.get("min_ttc"), crit.get("route_completion"),
-                 json.dumps(record.as_dict()), datetime.now(UTC).isoformat(timespec="seconds")))
+                (
+                    task.prompt_id,
+                    task.category,
+                    task.description,
+                    task.mode,
+                    task.temperature,
+                    task.run_index,
+                    record.status,
+                    int(record.first_pass_ok),
+                    record.repairs,
+                    record.llm_calls,
+                    record.prompt_tokens,
+                    record.completion_tokens,
+                    round(record.seconds, 3),
+                    record.message,
+                    record.out_dir,
+                    record.conformity_score,
+                    record.scs,
+                    None if not crit else int(bool(crit.get("collision"))),
+                    crit.get("min_distance"),
+                    crit.get("min_ttc"),
+                    crit.get("route_completion"),
+                    json.dumps(record.as_dict()),
+                    datetime.now(UTC).isoformat(timespec="seconds"),
+                ),
+            )
             run_id = cursor.lastrowid
             self._db.executemany(
                 "INSERT INTO attempts VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)",
-                [(run_id, a.index, a.kind, int(a.ok), a.stage, a.error_type, a.message,
-                  a.section, round(a.check_seconds, 3), a.llm_calls, a.tokens)
-                 for a in record.attempts])
+                [
+                    (
+                        run_id,
+                        a.index,
+                        a.kind,
+                        int(a.ok),
+                        a.stage,
+                        a.error_type,
+                        a.message,
+                        a.section,
+                        round(a.check_seconds, 3),
+                        a.llm_calls,
+                        a.tokens,
+                    )
+                    for a in record.attempts
+                ],
+            )
 
     def runs(self) -> list[RunRecord]:
         rows = self._db.execute("SELECT record FROM runs ORDER BY id")
@@ -114,6 +149,9 @@ class BenchStore:
     def attempts(self) -> list[AttemptRecord]:
         rows = self._db.execute(
             "SELECT idx, kind, ok, stage, error_type, message, section, check_seconds, "
-            "llm_calls, tokens FROM attempts ORDER BY run_id, idx")
-        return [AttemptRecord(i, AttemptKind(k), bool(o), s, e, m, sec, c, n, t)
-                for i, k, o, s, e, m, sec, c, n, t in rows]
+            "llm_calls, tokens FROM attempts ORDER BY run_id, idx"
+        )
+        return [
+            AttemptRecord(i, AttemptKind(k), bool(o), s, e, m, sec, c, n, t)
+            for i, k, o, s, e, m, sec, c, n, t in rows
+        ]

@@ -85,9 +85,14 @@ def apply_params(script: str, values: Mapping[str, str]) -> str:
     return _PARAM_LINE.sub(replace, script)
 
 
-def tune_params(description: str, entries: list[Entry], provider: BaseProvider, *,
-                temperature: float = 0.0, seed: int | None = None
-                ) -> tuple[dict[str, str], list[str]]:
+def tune_params(
+    description: str,
+    entries: list[Entry],
+    provider: BaseProvider,
+    *,
+    temperature: float = 0.0,
+    seed: int | None = None,
+) -> tuple[dict[str, str], list[str]]:
     """Ask the model for OPT_* values; keep only checked ones. Returns values and notes."""
     declared = declared_params(entries)
     if not declared:
@@ -95,12 +100,16 @@ def tune_params(description: str, entries: list[Entry], provider: BaseProvider, 
     fields: dict[str, Any] = {name: (str | float, ...) for name in declared}
     schema: type[BaseModel] = create_model("TunedParams", **fields)
     listing = "\n".join(
-        f"- {name} (default {default}) in {entry_id}: "
-        f"{_describe(entries, entry_id)}" for name, (default, entry_id) in declared.items())
-    messages = [Message("system", load("adapt_system.md")),
-                Message("user", f"Description: {description.strip()}\n\nParameters:\n{listing}")]
-    completion = provider.complete(messages, temperature=temperature, max_tokens=300,
-                                   schema=schema, seed=seed)
+        f"- {name} (default {default}) in {entry_id}: {_describe(entries, entry_id)}"
+        for name, (default, entry_id) in declared.items()
+    )
+    messages = [
+        Message("system", load("adapt_system.md")),
+        Message("user", f"Description: {description.strip()}\n\nParameters:\n{listing}"),
+    ]
+    completion = provider.complete(
+        messages, temperature=temperature, max_tokens=300, schema=schema, seed=seed
+    )
     proposed = completion.parsed.model_dump() if completion.parsed is not None else {}
     values: dict[str, str] = {}
     notes: list[str] = []
@@ -118,8 +127,12 @@ def _describe(entries: list[Entry], entry_id: str) -> str:
     return entry.descriptions[0]
 
 
-def assemble(retrieval: Retrieval, adversary_class: str, description: str,
-             params: Mapping[str, str] | None = None) -> Draft:
+def assemble(
+    retrieval: Retrieval,
+    adversary_class: str,
+    description: str,
+    params: Mapping[str, str] | None = None,
+) -> Draft:
     """Compose the chosen entries (ComposeError if they do not fit) and apply tuned params."""
     entries = retrieval.chosen_entries()
     if retrieval.map_name is None:
@@ -128,5 +141,10 @@ def assemble(retrieval: Retrieval, adversary_class: str, description: str,
         raise ComposeError(["no available map has every feature the chosen entries need"])
     script = compose(entries, adversary_class, retrieval.map_name, description=description)
     values = dict(params or {})
-    return Draft(script=apply_params(script, values), entries=entries,
-                 map_name=retrieval.map_name, adversary_class=adversary_class, params=values)
+    return Draft(
+        script=apply_params(script, values),
+        entries=entries,
+        map_name=retrieval.map_name,
+        adversary_class=adversary_class,
+        params=values,
+    )

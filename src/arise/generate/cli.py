@@ -57,8 +57,9 @@ def _read_descriptions(text: str | None, file: Path | None) -> list[tuple[str, s
                 try:
                     row = json.loads(line)
                 except json.JSONDecodeError as error:
-                    raise typer.BadParameter(f"{file}:{number}: not JSON ({error.msg})",
-                                             param_hint="--file") from None
+                    raise typer.BadParameter(
+                        f"{file}:{number}: not JSON ({error.msg})", param_hint="--file"
+                    ) from None
                 description = str(row.get("description", ""))
                 ident = str(row.get("id") or f"{number:03d}-{slug(description)}")
             else:
@@ -70,16 +71,24 @@ def _read_descriptions(text: str | None, file: Path | None) -> list[tuple[str, s
 def generate_command(
     description: Annotated[str | None, typer.Argument(help="The scenario, in words.")] = None,
     out: Annotated[Path, typer.Option("-o", "--out", help="Output folder.")] = Path("out"),
-    file: Annotated[Path | None, typer.Option(
-        help="Descriptions, one per line (.txt) or JSON lines with 'description' (.jsonl).")]
-    = None,
+    file: Annotated[
+        Path | None,
+        typer.Option(
+            help="Descriptions, one per line (.txt) or JSON lines with 'description' (.jsonl)."
+        ),
+    ] = None,
     count: Annotated[int, typer.Option(help="Runs per description.")] = 1,
     provider: ProviderOption = None,
     model: ModelOption = None,
     temperature: Annotated[float, typer.Option(help="Sampling temperature.")] = 0.0,
-    topk: Annotated[int, typer.Option(
-        help="Candidates kept per component: the first is used, the others replace it when "
-             "repair swaps a section.", min=1)] = 10,
+    topk: Annotated[
+        int,
+        typer.Option(
+            help="Candidates kept per component: the first is used, the others replace it when "
+            "repair swaps a section.",
+            min=1,
+        ),
+    ] = 10,
     max_repairs: Annotated[int, typer.Option(help="Repair budget per run.")] = 10,
     spawn_attempts: Annotated[int, typer.Option(help="Scenes tried per check.")] = 15,
     simulator: Annotated[Simulator, typer.Option(help="offline or carla.")] = Simulator.OFFLINE,
@@ -89,35 +98,55 @@ def generate_command(
     no_cache: NoCacheOption = False,
     record: RecordOption = None,
     replay: ReplayOption = None,
-    semantic_gate: Annotated[bool, typer.Option(
-        "--semantic-gate", help="Also require the deterministic conformity check to agree "
-        "with the description (adversary, start side, maneuver, road, weather).")] = False,
+    semantic_gate: Annotated[
+        bool,
+        typer.Option(
+            "--semantic-gate",
+            help="Also require the deterministic conformity check to agree "
+            "with the description (adversary, start side, maneuver, road, weather).",
+        ),
+    ] = False,
     as_json: Annotated[bool, typer.Option("--json", help="Print the reports as JSON.")] = False,
 ) -> None:
     descriptions = _read_descriptions(description, file)
     if not descriptions:
         errors.print("[red]error:[/red] give a description or --file")
         raise typer.Exit(2)
-    options = GenerateOptions(mode=mode, provider=provider, model=model, temperature=temperature,
-                              topk=topk, max_repairs=max_repairs, spawn_attempts=spawn_attempts,
-                              simulator=simulator, map_dir=map_dir, seed=seed,
-                              cache=False if no_cache else None, record=record, replay=replay,
-                              semantic_gate=semantic_gate)
+    options = GenerateOptions(
+        mode=mode,
+        provider=provider,
+        model=model,
+        temperature=temperature,
+        topk=topk,
+        max_repairs=max_repairs,
+        spawn_attempts=spawn_attempts,
+        simulator=simulator,
+        map_dir=map_dir,
+        seed=seed,
+        cache=False if no_cache else None,
+        record=record,
+        replay=replay,
+        semantic_gate=semantic_gate,
+    )
     runs: list[Generation] = []
     single = len(descriptions) == 1 and count == 1
     with Generator(options) as generator:  # bad KB or map folders raise AriseError
         for ident, text in descriptions:
             for index in range(count):
                 folder = out if single else out / (ident if count == 1 else f"{ident}/run-{index}")
-                generator.reconfigure(options.model_copy(update={"run_index": index,
-                                                                 "seed": seed + index}))
+                generator.reconfigure(
+                    options.model_copy(update={"run_index": index, "seed": seed + index})
+                )
                 run = _run_with_progress(generator, text, folder, quiet=as_json)
                 runs.append(run)
                 if not as_json:
                     mark = "[green]✔[/green]" if run.ok else "[red]✘[/red]"
                     console.print(f"{mark} {folder}: {run.summary()}")
-                    labels = [a.check.sandbox.label if a.check and a.check.sandbox else None
-                              for a in run.attempts if a.check is not None]
+                    labels = [
+                        a.check.sandbox.label if a.check and a.check.sandbox else None
+                        for a in run.attempts
+                        if a.check is not None
+                    ]
                     if labels:
                         console.print("  sandbox: " + confinement_summary(labels))
                     for note in run.contradictions:
@@ -148,6 +177,7 @@ def _run_with_progress(generator: Generator, text: str, folder: Path, quiet: boo
         return line
 
     with Live(render(), console=console, transient=True, refresh_per_second=4) as live:
+
         def update(event: ProgressEvent) -> None:
             if isinstance(event, StageStarted):
                 state["stage"] = event.stage.value

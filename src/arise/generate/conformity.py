@@ -34,8 +34,13 @@ LANE_CHANGE_METRES = 2.2
 MOVED_METRES = 1.5
 REACH_MARGIN = 1.0  # metres beyond the two half-widths that still count as "in the path"
 # Checks the optional semantic gate enforces, and the script section that decides each.
-GATED_CHECKS = {"adversary_type": "SPAWN", "spawn_position": "SPAWN",
-                "ego_maneuver": "GEOMETRY", "road_type": "GEOMETRY", "weather": "WEATHER"}
+GATED_CHECKS = {
+    "adversary_type": "SPAWN",
+    "spawn_position": "SPAWN",
+    "ego_maneuver": "GEOMETRY",
+    "road_type": "GEOMETRY",
+    "weather": "WEATHER",
+}
 
 
 @dataclass(frozen=True)
@@ -46,8 +51,12 @@ class ConformityCheck:
     ok: bool | None  # None: the fact could not be read
 
     def as_dict(self) -> dict[str, Any]:
-        return {"name": self.name, "expected": self.expected, "observed": self.observed,
-                "ok": self.ok}
+        return {
+            "name": self.name,
+            "expected": self.expected,
+            "observed": self.observed,
+            "ok": self.ok,
+        }
 
 
 @dataclass
@@ -66,15 +75,22 @@ class Conformity:
 
     @property
     def mismatches(self) -> list[str]:
-        return [f"{c.name}: expected {c.expected}, observed {c.observed}"
-                for c in self.checks if c.ok is False]
+        return [
+            f"{c.name}: expected {c.expected}, observed {c.observed}"
+            for c in self.checks
+            if c.ok is False
+        ]
 
     def as_dict(self) -> dict[str, Any]:
-        return {"score": self.score, "mismatches": self.mismatches,
-                "checks": [c.as_dict() for c in self.checks]}
+        return {
+            "score": self.score,
+            "mismatches": self.mismatches,
+            "checks": [c.as_dict() for c in self.checks],
+        }
 
 
 # -- facts from the trace -------------------------------------------------------------------
+
 
 def find_adversary(agents: list[AgentTrace]) -> AgentTrace | None:
     """Our scripts name the adversary's behavior AdversaryBehavior; else the first mover."""
@@ -123,8 +139,7 @@ def ego_maneuver(ego: AgentTrace) -> EgoManeuver | None:
     if ego.lane_changes is not None:
         return EgoManeuver.CHANGE_LANE if ego.lane_changes else EgoManeuver.GO_STRAIGHT
     _, lateral = _frame(start, end.x, end.y)  # no map to ask: sideways drift is the sign
-    return EgoManeuver.CHANGE_LANE if abs(lateral) > LANE_CHANGE_METRES \
-        else EgoManeuver.GO_STRAIGHT
+    return EgoManeuver.CHANGE_LANE if abs(lateral) > LANE_CHANGE_METRES else EgoManeuver.GO_STRAIGHT
 
 
 @dataclass(frozen=True)
@@ -141,8 +156,10 @@ class StartRelation:
 
     def describe(self) -> str:
         where = "ahead" if self.ahead >= 0 else "behind"
-        return (f"{abs(self.ahead):.0f} m {where}, {abs(self.left):.1f} m "
-                f"{'left' if self.left >= 0 else 'right'}, moving {self.direction}")
+        return (
+            f"{abs(self.ahead):.0f} m {where}, {abs(self.left):.1f} m "
+            f"{'left' if self.left >= 0 else 'right'}, moving {self.direction}"
+        )
 
 
 def start_relation(ego: AgentTrace, adversary: AgentTrace) -> StartRelation | None:
@@ -164,15 +181,17 @@ def _spawn_agrees(position: RelativePosition, rel: StartRelation) -> bool:
     moving = direction != "unknown"
     lateral = abs(rel.left)
     rules = {
-        RelativePosition.AHEAD_SAME_LANE: rel.ahead > 0 and side == "centre"
+        RelativePosition.AHEAD_SAME_LANE: rel.ahead > 0
+        and side == "centre"
         and direction != "opposite",
         RelativePosition.BEHIND_SAME_LANE: rel.ahead < 0 and side == "centre",
-        RelativePosition.ADJACENT_LANE_LEFT: side == "left" and lateral <= NEXT_LANE
+        RelativePosition.ADJACENT_LANE_LEFT: side == "left"
+        and lateral <= NEXT_LANE
         and direction in ("same", "unknown"),
-        RelativePosition.ADJACENT_LANE_RIGHT: side == "right" and lateral <= NEXT_LANE
+        RelativePosition.ADJACENT_LANE_RIGHT: side == "right"
+        and lateral <= NEXT_LANE
         and direction in ("same", "unknown"),
-        RelativePosition.ONCOMING: rel.ahead > 0 and direction == "opposite"
-        and side != "right",
+        RelativePosition.ONCOMING: rel.ahead > 0 and direction == "opposite" and side != "right",
         RelativePosition.ROADSIDE_RIGHT: side == "right",
         RelativePosition.ROADSIDE_LEFT: side == "left",
         RelativePosition.CROSSING_FROM_LEFT: side == "left"
@@ -196,8 +215,10 @@ def _reach(ego: AgentTrace, adversary: AgentTrace) -> float | None:
 
 # -- the comparison -------------------------------------------------------------------------
 
-def check_conformity(spec: ScenarioSpec, facts: SimulationFacts | None,
-                     map_features: frozenset[str] = frozenset()) -> Conformity:
+
+def check_conformity(
+    spec: ScenarioSpec, facts: SimulationFacts | None, map_features: frozenset[str] = frozenset()
+) -> Conformity:
     """Compare the spec with what ran; every check says what it expected and saw."""
     result = Conformity()
     add = result.checks.append
@@ -207,47 +228,82 @@ def check_conformity(spec: ScenarioSpec, facts: SimulationFacts | None,
     ego = next((a for a in facts.agents if a.is_ego), None)
     adversary = find_adversary(facts.agents)
     expected_class = spec.adversary_type.scenic_class
-    add(ConformityCheck("adversary_type", expected_class,
-                        adversary.kind if adversary else "no adversary",
-                        adversary is not None and adversary.kind == expected_class))
+    add(
+        ConformityCheck(
+            "adversary_type",
+            expected_class,
+            adversary.kind if adversary else "no adversary",
+            adversary is not None and adversary.kind == expected_class,
+        )
+    )
     if ego is not None:
         maneuver = ego_maneuver(ego)
-        add(ConformityCheck("ego_maneuver", spec.ego_maneuver.value,
-                            maneuver.value if maneuver else "unknown",
-                            None if maneuver is None else maneuver is spec.ego_maneuver))
+        add(
+            ConformityCheck(
+                "ego_maneuver",
+                spec.ego_maneuver.value,
+                maneuver.value if maneuver else "unknown",
+                None if maneuver is None else maneuver is spec.ego_maneuver,
+            )
+        )
         add(_road_check(spec.road_type, ego, adversary, map_features))
     if ego is not None and adversary is not None:
         relation = start_relation(ego, adversary)
-        add(ConformityCheck(
-            "spawn_position", spec.spawn_position.value,
-            relation.describe() if relation else "unknown",
-            None if relation is None else _spawn_agrees(spec.spawn_position, relation)))
+        add(
+            ConformityCheck(
+                "spawn_position",
+                spec.spawn_position.value,
+                relation.describe() if relation else "unknown",
+                None if relation is None else _spawn_agrees(spec.spawn_position, relation),
+            )
+        )
         reach = _reach(ego, adversary)
         limit = (ego.width + adversary.width) / 2 + REACH_MARGIN
-        add(ConformityCheck("reaches_ego_path", f"within {limit:.1f} m of the ego's path",
-                            "unknown" if reach is None else f"{reach:.1f} m",
-                            None if reach is None else reach <= limit))
+        add(
+            ConformityCheck(
+                "reaches_ego_path",
+                f"within {limit:.1f} m of the ego's path",
+                "unknown" if reach is None else f"{reach:.1f} m",
+                None if reach is None else reach <= limit,
+            )
+        )
     weather = facts.params.get("weather")
     known_weather = weather is not None and not weather.startswith("{")
-    add(ConformityCheck("weather", spec.weather, weather or "unset",
-                        (weather == spec.weather) if known_weather else None))
+    add(
+        ConformityCheck(
+            "weather",
+            spec.weather,
+            weather or "unset",
+            (weather == spec.weather) if known_weather else None,
+        )
+    )
     others = [a for a in facts.agents if not a.is_ego and a is not adversary]
-    add(ConformityCheck("participants", f"at least {len(spec.participants)} other object(s)",
-                        f"{len(others)}", len(others) >= len(spec.participants)))
+    add(
+        ConformityCheck(
+            "participants",
+            f"at least {len(spec.participants)} other object(s)",
+            f"{len(others)}",
+            len(others) >= len(spec.participants),
+        )
+    )
     return result
 
 
-def _road_check(road: RoadType, ego: AgentTrace, adversary: AgentTrace | None,
-                map_features: frozenset[str]) -> ConformityCheck:
+def _road_check(
+    road: RoadType, ego: AgentTrace, adversary: AgentTrace | None, map_features: frozenset[str]
+) -> ConformityCheck:
     junction_steps = ego.intersection_steps + (adversary.intersection_steps if adversary else 0)
     observed = "through a junction" if junction_steps else "no junction"
     if road in (RoadType.INTERSECTION, RoadType.T_JUNCTION):
         return ConformityCheck("road_type", road.value, observed, junction_steps > 0)
     if road is RoadType.HIGHWAY and map_features:
         on_highway = "highway" in map_features
-        return ConformityCheck("road_type", road.value,
-                               f"{observed}, {'highway' if on_highway else 'no highway'} map",
-                               on_highway and ego.intersection_steps == 0)
+        return ConformityCheck(
+            "road_type",
+            road.value,
+            f"{observed}, {'highway' if on_highway else 'no highway'} map",
+            on_highway and ego.intersection_steps == 0,
+        )
     return ConformityCheck("road_type", road.value, observed, ego.intersection_steps == 0)
 
 
@@ -257,9 +313,10 @@ def semantic_gate(result: CheckResult, conformity: Conformity) -> CheckResult:
     if not wrong:
         return result
     diagnostic = Diagnostic(
-        stage=Stage.SEMANTIC, error_type="ConformityMismatch",
-        message="; ".join(f"{c.name}: expected {c.expected}, observed {c.observed}"
-                          for c in wrong),
+        stage=Stage.SEMANTIC,
+        error_type="ConformityMismatch",
+        message="; ".join(f"{c.name}: expected {c.expected}, observed {c.observed}" for c in wrong),
         section=GATED_CHECKS[wrong[0].name],
-        hint="the script runs but does not do what the description says")
+        hint="the script runs but does not do what the description says",
+    )
     return result.model_copy(update={"ok": False, "diagnostic": diagnostic})

@@ -61,8 +61,11 @@ Progress = Callable[[ProgressEvent], None]
 def event_dict(event: ProgressEvent) -> dict[str, Any]:
     """`{"event": "stage" | "attempt" | "done", ...fields}`, JSON-serialisable; fields that
     are None are left out."""
-    fields = {key: (value.value if isinstance(value, StrEnum) else value)
-              for key, value in asdict(event).items() if value is not None}
+    fields = {
+        key: (value.value if isinstance(value, StrEnum) else value)
+        for key, value in asdict(event).items()
+        if value is not None
+    }
     return {"event": event.event, **fields}
 
 

@@ -16,7 +16,9 @@ DRIVING_WORDS = re.compile(
     r"\b(ego|car|cars|vehicle|vehicles|truck|van|bus|motorcycl\w*|motorbike|bike|bicycle|"
     r"cyclist|pedestrian|walker|person|child|people|road|street|lane|lanes|intersection|"
     r"junction|crossroads|crossing|highway|motorway|traffic|drive\w*|turn\w*|overtak\w*|"
-    r"pass\w*|brak\w*|park\w*|red light|signal)\b", re.I)
+    r"pass\w*|brak\w*|park\w*|red light|signal)\b",
+    re.I,
+)
 MAX_DESCRIPTION_CHARS = 2000
 
 
@@ -35,11 +37,15 @@ def check_description(description: str) -> str | None:
     if not text:
         return "the description is empty: describe the ego, the adversary and what happens"
     if len(text) > MAX_DESCRIPTION_CHARS:
-        return (f"the description is {len(text)} characters long; keep it under "
-                f"{MAX_DESCRIPTION_CHARS} (one scenario per description)")
+        return (
+            f"the description is {len(text)} characters long; keep it under "
+            f"{MAX_DESCRIPTION_CHARS} (one scenario per description)"
+        )
     if not DRIVING_WORDS.search(text):
-        return ("this does not look like a driving scenario: mention the road users "
-                "(ego car, pedestrian, cyclist, ...) and what happens on the road")
+        return (
+            "this does not look like a driving scenario: mention the road users "
+            "(ego car, pedestrian, cyclist, ...) and what happens on the road"
+        )
     return None
 
 
@@ -51,8 +57,7 @@ def find_contradictions(description: str, spec: ScenarioSpec | None = None) -> l
     right = bool(re.search(r"\b(turns?|turning) right\b|\bright turn\b", text))
     if left and right and "ego" in text:
         found.append("the description has the ego turn both left and right")
-    if re.search(r"\bhighway\b|\bmotorway\b", text) and re.search(r"\bpedestrian|sidewalk\b",
-                                                                  text):
+    if re.search(r"\bhighway\b|\bmotorway\b", text) and re.search(r"\bpedestrian|sidewalk\b", text):
         found.append("pedestrians and sidewalks do not belong on a highway")
     if spec is not None:
         if left and not right and spec.ego_maneuver is EgoManeuver.TURN_RIGHT:
@@ -71,14 +76,20 @@ def extraction_messages(description: str) -> list[Message]:
     return messages
 
 
-def extract_spec(description: str, provider: BaseProvider, *, temperature: float = 0.0,
-                 seed: int | None = None) -> Extraction:
+def extract_spec(
+    description: str, provider: BaseProvider, *, temperature: float = 0.0, seed: int | None = None
+) -> Extraction:
     """Module A. Provider failures propagate (the caller records them); bad input does not."""
     refusal = check_description(description)
     if refusal:
         return Extraction(error=refusal)
-    completion = provider.complete(extraction_messages(description), temperature=temperature,
-                                   max_tokens=600, schema=ScenarioSpec, seed=seed)
+    completion = provider.complete(
+        extraction_messages(description),
+        temperature=temperature,
+        max_tokens=600,
+        schema=ScenarioSpec,
+        seed=seed,
+    )
     spec = completion.parsed
     assert isinstance(spec, ScenarioSpec)
     return Extraction(spec=spec, contradictions=find_contradictions(description, spec))

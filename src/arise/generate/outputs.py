@@ -31,8 +31,14 @@ def write_report(folder: Path, report: dict[str, Any]) -> None:
 
 def write_script(folder: Path, script: str, ok: bool) -> Path:
     """scenario.scenic; a failed final script carries a first-line marker saying so."""
-    text = script if ok else ("# ARISE: FAILED - this script did not execute; see "
-                              "report.json for the last diagnostic\n" + script)
+    text = (
+        script
+        if ok
+        else (
+            "# ARISE: FAILED - this script did not execute; see "
+            "report.json for the last diagnostic\n" + script
+        )
+    )
     path = folder / "scenario.scenic"
     write_atomic(path, text)
     return path

@@ -46,15 +46,19 @@ def slug(text: str) -> str:
     return "-".join(words) or "scenario"
 
 
-def chatscene_retrieval(spec: ScenarioSpec, kb: KnowledgeBase, retriever: Retriever,
-                        maps: dict[str, frozenset[str]]) -> Retrieval:
+def chatscene_retrieval(
+    spec: ScenarioSpec, kb: KnowledgeBase, retriever: Retriever, maps: dict[str, frozenset[str]]
+) -> Retrieval:
     """The baseline: top-1 per component by text alone, no filters, no compatibility check."""
     from arise.kb.compose import pick_map
 
     result = Retrieval()
-    for component, text in ((Component.GEOMETRY, spec.geometry), (Component.SPAWN, spec.spawn),
-                            (Component.BEHAVIOR, spec.behavior),
-                            (Component.WEATHER, spec.weather)):
+    for component, text in (
+        (Component.GEOMETRY, spec.geometry),
+        (Component.SPAWN, spec.spawn),
+        (Component.BEHAVIOR, spec.behavior),
+        (Component.WEATHER, spec.weather),
+    ):
         hits = retriever.search(text, component, k=1)
         result.candidates[component] = [h.entry for h in hits]
         result.chosen[component] = [h.entry for h in hits][:1]
@@ -72,8 +76,14 @@ class Generator:
     default a script is checked by `check_text` in this generator's worker pool.
     """
 
-    def __init__(self, options: GenerateOptions, *, pool: WorkerPool | None = None,
-                 provider: UsageLedger | None = None, checker: Checker | None = None):
+    def __init__(
+        self,
+        options: GenerateOptions,
+        *,
+        pool: WorkerPool | None = None,
+        provider: UsageLedger | None = None,
+        checker: Checker | None = None,
+    ):
         self.options = options
         self._load_kb(options)
         self._load_maps(options)
@@ -99,8 +109,15 @@ class Generator:
     @staticmethod
     def _provider_key(options: GenerateOptions) -> tuple[object, ...]:
         """What the provider is built from; a replayed run index has its own cassette reader."""
-        return (options.provider, options.model, options.threads, options.cache,
-                options.record, options.replay, options.run_index if options.replay else None)
+        return (
+            options.provider,
+            options.model,
+            options.threads,
+            options.cache,
+            options.record,
+            options.replay,
+            options.run_index if options.replay else None,
+        )
 
     def reconfigure(self, options: GenerateOptions) -> None:
         """Use other options for the next runs. Per-run options (mode, temperature, seed,
@@ -109,16 +126,27 @@ class Generator:
         ReconfigureError, and nothing changes."""
         new_provider = self._provider_key(options) != self._provider_key(self.options)
         if new_provider and not self._own_provider:
-            changed = [name for name in ("provider", "model", "threads", "cache", "record",
-                                         "replay", "run_index")
-                       if getattr(options, name) != getattr(self.options, name)]
-            raise ReconfigureError(f"this generator was given its model; it cannot change "
-                                   f"{', '.join(changed)}: build a new Generator")
+            changed = [
+                name
+                for name in (
+                    "provider",
+                    "model",
+                    "threads",
+                    "cache",
+                    "record",
+                    "replay",
+                    "run_index",
+                )
+                if getattr(options, name) != getattr(self.options, name)
+            ]
+            raise ReconfigureError(
+                f"this generator was given its model; it cannot change "
+                f"{', '.join(changed)}: build a new Generator"
+            )
         if new_provider and self._provider is not None:
             self._provider.close()
             self._provider = None
-        if (options.kb_dirs, options.retrieval) != (self.options.kb_dirs,
-                                                    self.options.retrieval):
+        if (options.kb_dirs, options.retrieval) != (self.options.kb_dirs, self.options.retrieval):
             self._load_kb(options)
         if options.map_dir != self.options.map_dir:
             self._load_maps(options)
@@ -134,10 +162,14 @@ class Generator:
                 overrides["model"] = self.options.model
             if self.options.threads:
                 overrides["threads"] = self.options.threads
-            self._provider = get_provider(self.options.provider, cache=self.options.cache,
-                                          record=self.options.record,
-                                          replay=self.options.replay,
-                                          run_index=self.options.run_index, **overrides)
+            self._provider = get_provider(
+                self.options.provider,
+                cache=self.options.cache,
+                record=self.options.record,
+                replay=self.options.replay,
+                run_index=self.options.run_index,
+                **overrides,
+            )
         return self._provider
 
     def close(self) -> None:
@@ -153,8 +185,9 @@ class Generator:
         self.close()
 
     # -- one description -------------------------------------------------------------------
-    def generate(self, description: str, out_dir: Path | None = None,
-                 progress: Progress | None = None) -> Generation:
+    def generate(
+        self, description: str, out_dir: Path | None = None, progress: Progress | None = None
+    ) -> Generation:
         """One description through modules A-D. Never raises for a bad description or a
         failing model: the run's status and message say what happened."""
         run = Generation(description=description, options=self.options, out_dir=out_dir)
@@ -186,9 +219,15 @@ class Generator:
         """How this generator validates a script (also used to re-check saved scripts)."""
         options = self.options
         return CheckOptions(
-            simulator=options.simulator, map_dir=options.map_dir, steps=options.steps,
-            spawn_attempts=options.spawn_attempts, seed=options.seed,
-            sample_iterations=SAMPLE_ITERATIONS, timeout=options.check_timeout, png=png)
+            simulator=options.simulator,
+            map_dir=options.map_dir,
+            steps=options.steps,
+            spawn_attempts=options.spawn_attempts,
+            seed=options.seed,
+            sample_iterations=SAMPLE_ITERATIONS,
+            timeout=options.check_timeout,
+            png=png,
+        )
 
     def conformity_of(self, spec: ScenarioSpec, result: CheckResult) -> Conformity:
         """The conformity check of a validation, with the features of the map it ran on."""
@@ -216,8 +255,9 @@ class Generator:
         the attempts. Returns how the run ended."""
         options = self.options
         emit(StageStarted(RunStage.EXTRACT))
-        extraction = extract_spec(run.description, self.provider,
-                                  temperature=options.temperature, seed=options.seed)
+        extraction = extract_spec(
+            run.description, self.provider, temperature=options.temperature, seed=options.seed
+        )
         if extraction.spec is None:
             return Outcome(RunStatus.REFUSED, extraction.error)
         hinted, run.hint_notes = apply_hints(run.description, extraction.spec)
@@ -229,32 +269,56 @@ class Generator:
         if options.mode is Mode.CHATSCENE:
             run.retrieval = chatscene_retrieval(spec, self.kb, self.retriever, self.maps)
         else:
-            run.retrieval = retrieve(spec, self.kb, self.retriever, self.maps, run.description,
-                                     topk=options.topk)
+            run.retrieval = retrieve(
+                spec, self.kb, self.retriever, self.maps, run.description, topk=options.topk
+            )
         emit(StageStarted(RunStage.ASSEMBLE))
         adversary = spec.adversary_type.scenic_class
         try:
             params: dict[str, str] = {}
             if options.mode is not Mode.CHATSCENE and run.retrieval.chosen:
-                params, notes = tune_params(run.description, run.retrieval.chosen_entries(),
-                                            self.provider, temperature=options.temperature,
-                                            seed=options.seed)
+                params, notes = tune_params(
+                    run.description,
+                    run.retrieval.chosen_entries(),
+                    self.provider,
+                    temperature=options.temperature,
+                    seed=options.seed,
+                )
                 run.retrieval.notes += notes
             draft = assemble(run.retrieval, adversary, run.description, params)
         except ComposeError as error:
             run.add_attempt(compose_failure(error))
             return Outcome(RunStatus.FAILED, f"the retrieved snippets do not fit: {error}")
         run.use_draft(draft)
-        context = None if options.mode is not Mode.ARISE else RepairContext(
-            description=run.description, retrieval=run.retrieval, draft=draft,
-            provider=self.provider, maps=self.maps, temperature=options.temperature,
-            seed=options.seed,
-            rules=RuleContext(adversary_class=adversary,
-                              param_defaults={name: default for name, (default, _) in
-                                              declared_params(list(self.kb)).items()}))
-        return repair_loop(run, draft.script, self.validator(run.out_dir, spec), context,
-                           max_repairs=options.max_repairs, emit=emit,
-                           on_attempt=lambda attempt: self._save(run, final=False))
+        context = (
+            None
+            if options.mode is not Mode.ARISE
+            else RepairContext(
+                description=run.description,
+                retrieval=run.retrieval,
+                draft=draft,
+                provider=self.provider,
+                maps=self.maps,
+                temperature=options.temperature,
+                seed=options.seed,
+                rules=RuleContext(
+                    adversary_class=adversary,
+                    param_defaults={
+                        name: default
+                        for name, (default, _) in declared_params(list(self.kb)).items()
+                    },
+                ),
+            )
+        )
+        return repair_loop(
+            run,
+            draft.script,
+            self.validator(run.out_dir, spec),
+            context,
+            max_repairs=options.max_repairs,
+            emit=emit,
+            on_attempt=lambda attempt: self._save(run, final=False),
+        )
 
     def _save(self, run: Generation, final: bool) -> None:
         if run.out_dir is None or run.status is RunStatus.REFUSED:
@@ -270,15 +334,24 @@ class Generator:
 
 def compose_failure(error: ComposeError) -> Attempt:
     """The attempt that records snippets that did not fit together (nothing was run)."""
-    return Attempt(index=0, kind=AttemptKind.INITIAL, detail="compose", script="", ok=False,
-                   diagnostic=Diagnostic(stage=Stage.COMPILE, error_type="ComposeError",
-                                         message=str(error)),
-                   diff="", check_seconds=0.0)
+    return Attempt(
+        index=0,
+        kind=AttemptKind.INITIAL,
+        detail="compose",
+        script="",
+        ok=False,
+        diagnostic=Diagnostic(stage=Stage.COMPILE, error_type="ComposeError", message=str(error)),
+        diff="",
+        check_seconds=0.0,
+    )
 
 
-def generate(description: str, options: GenerateOptions | None = None,
-             out_dir: str | Path | None = None, progress: Progress | None = None) -> Generation:
+def generate(
+    description: str,
+    options: GenerateOptions | None = None,
+    out_dir: str | Path | None = None,
+    progress: Progress | None = None,
+) -> Generation:
     """Library call behind `arise generate` for one description."""
     with Generator(options or GenerateOptions()) as generator:
         return generator.generate(description, Path(out_dir) if out_dir else None, progress)
-

@@ -84,47 +84,71 @@ class RepairContext:
         self.llm_failures[section] = self.llm_failures.get(section, 0) + 1
 
     def model_may_repair(self, section: str | None, diagnostic: Diagnostic) -> bool:
-        return (self.provider is not None and section is not None and section != "HEADER"
-                and self.llm_failures.get(section, 0) < MODEL_TRIES_PER_SECTION
-                and diagnostic.stage is not Stage.GATE)
+        return (
+            self.provider is not None
+            and section is not None
+            and section != "HEADER"
+            and self.llm_failures.get(section, 0) < MODEL_TRIES_PER_SECTION
+            and diagnostic.stage is not Stage.GATE
+        )
 
 
-def llm_repair(context: RepairContext, script: str, diagnostic: Diagnostic, section: str
-               ) -> RepairStep:
+def llm_repair(
+    context: RepairContext, script: str, diagnostic: Diagnostic, section: str
+) -> RepairStep:
     """Ask the model for the failing section back; no script when its answer is unusable."""
     assert context.provider is not None
     component = SECTION_COMPONENT[section]
-    examples = [e for e in context.retrieval.candidates.get(component, [])[:3]
-                if e not in context.draft.entries][:2]
-    example_text = "\n\n".join(f"Example ({e.descriptions[0]}):\n```scenic\n{e.snippet}```"
-                               for e in examples)
+    examples = [
+        e
+        for e in context.retrieval.candidates.get(component, [])[:3]
+        if e not in context.draft.entries
+    ][:2]
+    example_text = "\n\n".join(
+        f"Example ({e.descriptions[0]}):\n```scenic\n{e.snippet}```" for e in examples
+    )
     problem = diagnostic.one_line() + (f"\nHint: {diagnostic.hint}" if diagnostic.hint else "")
     if diagnostic.excerpt:
         problem += f"\n{diagnostic.excerpt}"
-    user = (f"Scenario: {context.description.strip()}\n\nError:\n{problem}\n\n"
-            f"Section {section}:\n```scenic\n{section_body(script, section)}\n```\n\n"
-            + (f"Working examples of this kind of section:\n{example_text}\n\n"
-               if example_text else "")
-            + f"Return the corrected {section} section.")
+    user = (
+        f"Scenario: {context.description.strip()}\n\nError:\n{problem}\n\n"
+        f"Section {section}:\n```scenic\n{section_body(script, section)}\n```\n\n"
+        + (f"Working examples of this kind of section:\n{example_text}\n\n" if example_text else "")
+        + f"Return the corrected {section} section."
+    )
     completion = context.provider.complete(
         [Message("system", load("repair_system.md")), Message("user", user)],
-        temperature=context.temperature, max_tokens=700, seed=context.seed)
+        temperature=context.temperature,
+        max_tokens=700,
+        seed=context.seed,
+    )
     code = extract_code(completion.text)
     if code is None:
-        return RepairStep(None, AttemptKind.LLM, "the model returned no code", completion.usage,
-                          model_failed_on=section)
+        return RepairStep(
+            None,
+            AttemptKind.LLM,
+            "the model returned no code",
+            completion.usage,
+            model_failed_on=section,
+        )
     repaired = replace_section(script, section, code)
     if repaired is None or repaired == script:
-        return RepairStep(None, AttemptKind.LLM, "the model returned the section unchanged",
-                          completion.usage, model_failed_on=section)
+        return RepairStep(
+            None,
+            AttemptKind.LLM,
+            "the model returned the section unchanged",
+            completion.usage,
+            model_failed_on=section,
+        )
     return RepairStep(repaired, AttemptKind.LLM, f"model rewrote {section}", completion.usage)
 
 
 def swap_candidate(context: RepairContext, section: str | None) -> RepairStep:
     """Replace the entry of the failing section by the next compatible candidate."""
     order = [section] if section else []
-    order += [s for s in ("SPAWN", "BEHAVIOR", "GEOMETRY", "MISC", "REQUIREMENTS")
-              if s not in order]
+    order += [
+        s for s in ("SPAWN", "BEHAVIOR", "GEOMETRY", "MISC", "REQUIREMENTS") if s not in order
+    ]
     draft = context.draft
     for name in order:
         component = SECTION_COMPONENT.get(name)
@@ -141,9 +165,14 @@ def swap_candidate(context: RepairContext, section: str | None) -> RepairStep:
             tried = context.tried.setdefault(name, {e.id for e in current})
             others = [e for e in draft.entries if e.component is not component]
             replacement = next(
-                (c for c in context.retrieval.candidates.get(component, [])
-                 if c.id not in tried
-                 and not composition_problems([*others, c], draft.adversary_class)), None)
+                (
+                    c
+                    for c in context.retrieval.candidates.get(component, [])
+                    if c.id not in tried
+                    and not composition_problems([*others, c], draft.adversary_class)
+                ),
+                None,
+            )
             if replacement is None:
                 continue
             tried.add(replacement.id)
@@ -153,13 +182,18 @@ def swap_candidate(context: RepairContext, section: str | None) -> RepairStep:
         if map_name is None:
             continue
         try:
-            script = compose(entries, draft.adversary_class, map_name,
-                             description=context.description)
+            script = compose(
+                entries, draft.adversary_class, map_name, description=context.description
+            )
         except ComposeError:
             continue
-        new_draft = Draft(script=apply_params(script, draft.params), entries=entries,
-                          map_name=map_name, adversary_class=draft.adversary_class,
-                          params=draft.params)
+        new_draft = Draft(
+            script=apply_params(script, draft.params),
+            entries=entries,
+            map_name=map_name,
+            adversary_class=draft.adversary_class,
+            params=draft.params,
+        )
         return RepairStep(new_draft.script, AttemptKind.SWAP, note, draft=new_draft)
     return RepairStep(None, AttemptKind.SWAP, "no other candidate fits")
 
@@ -179,24 +213,52 @@ def repair_once(context: RepairContext, script: str, diagnostic: Diagnostic) -> 
         if step.script is not None:
             return step
         swap = swap_candidate(context, section)
-        return RepairStep(swap.script, AttemptKind.SWAP, f"{step.detail}; {swap.detail}",
-                          step.usage, swap.draft, model_failed_on=section)
+        return RepairStep(
+            swap.script,
+            AttemptKind.SWAP,
+            f"{step.detail}; {swap.detail}",
+            step.usage,
+            swap.draft,
+            model_failed_on=section,
+        )
     return swap_candidate(context, section)
 
 
-def run_attempt(index: int, kind: AttemptKind, detail: str, before: str, script: str,
-                validate: Validate, usage: Usage) -> Attempt:
+def run_attempt(
+    index: int,
+    kind: AttemptKind,
+    detail: str,
+    before: str,
+    script: str,
+    validate: Validate,
+    usage: Usage,
+) -> Attempt:
     started = time.perf_counter()
     result = validate(script)
-    return Attempt(index=index, kind=kind, detail=detail, script=script, ok=result.ok,
-                   diagnostic=result.diagnostic, diff=unified_diff(before, script),
-                   check_seconds=time.perf_counter() - started, llm_usage=usage,
-                   check=result)
+    return Attempt(
+        index=index,
+        kind=kind,
+        detail=detail,
+        script=script,
+        ok=result.ok,
+        diagnostic=result.diagnostic,
+        diff=unified_diff(before, script),
+        check_seconds=time.perf_counter() - started,
+        llm_usage=usage,
+        check=result,
+    )
 
 
-def repair_loop(run: Generation, script: str, validate: Validate,
-                context: RepairContext | None, *, max_repairs: int,
-                emit: Progress = ignore, on_attempt: OnAttempt | None = None) -> Outcome:
+def repair_loop(
+    run: Generation,
+    script: str,
+    validate: Validate,
+    context: RepairContext | None,
+    *,
+    max_repairs: int,
+    emit: Progress = ignore,
+    on_attempt: OnAttempt | None = None,
+) -> Outcome:
     """Module D: validate the assembled script, then repair it until it runs or
     `max_repairs` repairs are spent (no repairs at all when `context` is None).
 
@@ -206,23 +268,37 @@ def repair_loop(run: Generation, script: str, validate: Validate,
 
     def add(attempt: Attempt) -> Attempt:
         run.add_attempt(attempt)
-        emit(AttemptChecked(attempt.index, attempt.kind, attempt.ok, attempt.detail,
-                            attempt.diagnostic.one_line() if attempt.diagnostic else None))
+        emit(
+            AttemptChecked(
+                attempt.index,
+                attempt.kind,
+                attempt.ok,
+                attempt.detail,
+                attempt.diagnostic.one_line() if attempt.diagnostic else None,
+            )
+        )
         if on_attempt is not None:
             on_attempt(attempt)
         return attempt
 
     emit(StageStarted(RunStage.VALIDATE, attempt=len(run.attempts)))
-    attempt = add(run_attempt(len(run.attempts), AttemptKind.INITIAL,
-                              "assembled from the knowledge base", "", script, validate,
-                              Usage()))
+    attempt = add(
+        run_attempt(
+            len(run.attempts),
+            AttemptKind.INITIAL,
+            "assembled from the knowledge base",
+            "",
+            script,
+            validate,
+            Usage(),
+        )
+    )
     if context is None:
         return Outcome(RunStatus.EXECUTED if attempt.ok else RunStatus.FAILED)
     while not attempt.ok and len(run.attempts) <= max_repairs:
         diagnostic = attempt.diagnostic
         assert diagnostic is not None
-        emit(StageStarted(RunStage.REPAIR, attempt=len(run.attempts),
-                          error=diagnostic.one_line()))
+        emit(StageStarted(RunStage.REPAIR, attempt=len(run.attempts), error=diagnostic.one_line()))
         step = repair_once(context, attempt.script, diagnostic)
         if step.model_failed_on is not None:
             context.count_model_failure(step.model_failed_on)
@@ -231,8 +307,15 @@ def repair_loop(run: Generation, script: str, validate: Validate,
         if step.draft is not None:
             context.draft = step.draft
             run.use_draft(step.draft)
-        attempt = run_attempt(len(run.attempts), step.kind, step.detail, attempt.script,
-                              step.script, validate, step.usage)
+        attempt = run_attempt(
+            len(run.attempts),
+            step.kind,
+            step.detail,
+            attempt.script,
+            step.script,
+            validate,
+            step.usage,
+        )
         if step.kind is AttemptKind.LLM and not attempt.ok and attempt.diagnostic is not None:
             # A model repair that did not run counts against the section now failing.
             failing = guilty_section(attempt.diagnostic)
@@ -242,5 +325,6 @@ def repair_loop(run: Generation, script: str, validate: Validate,
     if attempt.ok:
         return Outcome(RunStatus.EXECUTED)
     last = attempt.diagnostic
-    return Outcome(RunStatus.FAILED,
-                   f"repair budget spent; last error: {last.one_line()}" if last else None)
+    return Outcome(
+        RunStatus.FAILED, f"repair budget spent; last error: {last.one_line()}" if last else None
+    )

@@ -27,8 +27,15 @@ MANEUVER_TAGS: dict[EgoManeuver, tuple[str, ...]] = {
     EgoManeuver.TURN_LEFT: ("left_turn", "unprotected_left_turn"),
     EgoManeuver.TURN_RIGHT: ("right_turn",),
     EgoManeuver.CHANGE_LANE: ("lane_changing", "multilane", "cut_in"),
-    EgoManeuver.GO_STRAIGHT: ("straight", "cross_traffic", "straight_obstacle", "red_light_running",
-                              "crossing_negotiation", "highway", "two_way"),
+    EgoManeuver.GO_STRAIGHT: (
+        "straight",
+        "cross_traffic",
+        "straight_obstacle",
+        "red_light_running",
+        "crossing_negotiation",
+        "highway",
+        "two_way",
+    ),
 }
 SPAWN_TAGS: dict[RelativePosition, tuple[str, ...]] = {
     RelativePosition.AHEAD_SAME_LANE: ("ahead", "same_lane", "lead_vehicle"),
@@ -69,8 +76,9 @@ class Retrieval:
         return {c.value: [e.id for e in entries] for c, entries in self.candidates.items()}
 
 
-def _ranked(retriever: Retriever, query: str, component: Component, pool: list[Entry]
-            ) -> list[Entry]:
+def _ranked(
+    retriever: Retriever, query: str, component: Component, pool: list[Entry]
+) -> list[Entry]:
     """`pool` in retrieval order (entries the retriever did not rank keep their order last)."""
     if not pool:
         return []
@@ -92,8 +100,9 @@ def _route_agrees(behavior: Entry, geometry: Entry) -> bool:
     return "turning_across" not in behavior.tags or geometry.id in behavior.companions
 
 
-def _geometry_pool(spec: ScenarioSpec, entries: list[Entry],
-                   placeable: Callable[[Entry], bool]) -> tuple[list[Entry], list[str]]:
+def _geometry_pool(
+    spec: ScenarioSpec, entries: list[Entry], placeable: Callable[[Entry], bool]
+) -> tuple[list[Entry], list[str]]:
     notes: list[str] = []
     needed = set(ROAD_FEATURES[spec.road_type])
 
@@ -113,8 +122,10 @@ def _geometry_pool(spec: ScenarioSpec, entries: list[Entry],
     placeable_entries = [e for e in entries if placeable(e)]
     for fits, note in (
         (lambda e: road_fits(e) and maneuver_fits(e), None),
-        (road_fits, f"no geometry entry for {spec.ego_maneuver} on {spec.road_type}; "
-                    "kept the road type"),
+        (
+            road_fits,
+            f"no geometry entry for {spec.ego_maneuver} on {spec.road_type}; kept the road type",
+        ),
         (maneuver_fits, f"no geometry entry for {spec.road_type}; kept the maneuver"),
         (lambda e: True, "no geometry entry matched the road type or maneuver"),
     ):
@@ -126,10 +137,15 @@ def _geometry_pool(spec: ScenarioSpec, entries: list[Entry],
     return [], notes
 
 
-def retrieve(spec: ScenarioSpec, kb: KnowledgeBase, retriever: Retriever,
-             maps: Mapping[str, frozenset[str]], description: str = "",
-             pick_map: Callable[[list[Entry], Mapping[str, frozenset[str]]], str | None]
-             | None = None, topk: int | None = None) -> Retrieval:
+def retrieve(
+    spec: ScenarioSpec,
+    kb: KnowledgeBase,
+    retriever: Retriever,
+    maps: Mapping[str, frozenset[str]],
+    description: str = "",
+    pick_map: Callable[[list[Entry], Mapping[str, frozenset[str]]], str | None] | None = None,
+    topk: int | None = None,
+) -> Retrieval:
     """Candidates per component for `spec` (the first `topk` of each, all when None), and
     one consistent choice of entries."""
     from arise.kb.compose import pick_map as default_pick_map
@@ -146,35 +162,61 @@ def retrieve(spec: ScenarioSpec, kb: KnowledgeBase, retriever: Retriever,
 
     geometry_pool, notes = _geometry_pool(spec, kb.of(Component.GEOMETRY), placeable)
     result.notes += notes
-    geometries = _ranked(retriever, query(f"{spec.geometry} {spec.ego_maneuver.value} "
-                                          f"{spec.road_type.value}"),
-                         Component.GEOMETRY, geometry_pool)
+    geometries = _ranked(
+        retriever,
+        query(f"{spec.geometry} {spec.ego_maneuver.value} {spec.road_type.value}"),
+        Component.GEOMETRY,
+        geometry_pool,
+    )
     spawn_tags = set(SPAWN_TAGS[spec.spawn_position])
     for geometry in geometries:
         defined = set(geometry.defines)
-        spawns = [e for e in kb.of(Component.SPAWN)
-                  if e.suits(adversary) and set(e.needs) <= defined and placeable(e)]
-        spawns = _prefer(_ranked(retriever, query(f"{spec.spawn} {spec.spawn_position.value}"),
-                                 Component.SPAWN, spawns),
-                         lambda e: len(spawn_tags & set(e.tags)))
+        spawns = [
+            e
+            for e in kb.of(Component.SPAWN)
+            if e.suits(adversary) and set(e.needs) <= defined and placeable(e)
+        ]
+        spawns = _prefer(
+            _ranked(
+                retriever,
+                query(f"{spec.spawn} {spec.spawn_position.value}"),
+                Component.SPAWN,
+                spawns,
+            ),
+            lambda e: len(spawn_tags & set(e.tags)),
+        )
         for spawn in spawns:
             both = defined | set(spawn.defines)
-            behaviors = [e for e in kb.of(Component.BEHAVIOR)
-                         if e.suits(adversary) and set(e.needs) <= both
-                         and _route_agrees(e, geometry)]
+            behaviors = [
+                e
+                for e in kb.of(Component.BEHAVIOR)
+                if e.suits(adversary) and set(e.needs) <= both and _route_agrees(e, geometry)
+            ]
             behaviors = _ranked(retriever, query(spec.behavior), Component.BEHAVIOR, behaviors)
             if not behaviors:
                 continue
             if choose_map([geometry, spawn, behaviors[0]], maps) is None:
                 continue
             result.candidates[Component.GEOMETRY] = [geometry] + [
-                g for g in geometries if g is not geometry]
-            result.candidates[Component.SPAWN] = spawns[spawns.index(spawn):]
+                g for g in geometries if g is not geometry
+            ]
+            result.candidates[Component.SPAWN] = spawns[spawns.index(spawn) :]
             result.candidates[Component.BEHAVIOR] = behaviors
-            result.chosen = {Component.GEOMETRY: [geometry], Component.SPAWN: [spawn],
-                             Component.BEHAVIOR: [behaviors[0]]}
-            _add_extras(spec, kb, retriever, maps, choose_map, result, both | set(
-                behaviors[0].defines), query)
+            result.chosen = {
+                Component.GEOMETRY: [geometry],
+                Component.SPAWN: [spawn],
+                Component.BEHAVIOR: [behaviors[0]],
+            }
+            _add_extras(
+                spec,
+                kb,
+                retriever,
+                maps,
+                choose_map,
+                result,
+                both | set(behaviors[0].defines),
+                query,
+            )
             result.map_name = choose_map(result.chosen_entries(), maps)
             if topk is not None:
                 result.keep(topk)
@@ -183,10 +225,16 @@ def retrieve(spec: ScenarioSpec, kb: KnowledgeBase, retriever: Retriever,
     return result
 
 
-def _add_extras(spec: ScenarioSpec, kb: KnowledgeBase, retriever: Retriever,
-                maps: Mapping[str, frozenset[str]],
-                choose_map: Callable[[list[Entry], Mapping[str, frozenset[str]]], str | None],
-                result: Retrieval, defined: set[str], query: Callable[[str], str]) -> None:
+def _add_extras(
+    spec: ScenarioSpec,
+    kb: KnowledgeBase,
+    retriever: Retriever,
+    maps: Mapping[str, frozenset[str]],
+    choose_map: Callable[[list[Entry], Mapping[str, frozenset[str]]], str | None],
+    result: Retrieval,
+    defined: set[str],
+    query: Callable[[str], str],
+) -> None:
     """Weather, other participants and requirements that fit the chosen core."""
     weathers = kb.of(Component.WEATHER)
     exact = [e for e in weathers if f"'{spec.weather}'" in e.snippet]
@@ -196,8 +244,11 @@ def _add_extras(spec: ScenarioSpec, kb: KnowledgeBase, retriever: Retriever,
         result.chosen[Component.WEATHER] = [ranked[0]]
 
     def fits(entry: Entry) -> bool:
-        return set(entry.needs) <= defined and entry.suits(spec.adversary_type.scenic_class) \
+        return (
+            set(entry.needs) <= defined
+            and entry.suits(spec.adversary_type.scenic_class)
             and choose_map([*result.chosen_entries(), entry], maps) is not None
+        )
 
     misc_pool = [e for e in kb.of(Component.MISC) if fits(e)]
     chosen_misc: list[Entry] = []

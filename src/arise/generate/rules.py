@@ -41,7 +41,8 @@ Rule = Callable[[Diagnostic, str, RuleContext], RuleFix | None]
 _SCENIC2 = re.compile(
     r"(?P<lead>(?:^|=|\(|,)\s*)(?P<cls>" + "|".join(CLASS_NAMES) + r")(?P<rest>\s+(?:at|on|in|with|"
     r"following|ahead\s+of|behind|left\s+of|right\s+of|offset\s+by|facing|beyond|visible|"
-    r"contained\s+in)\b)")
+    r"contained\s+in)\b)"
+)
 _PLACEHOLDER = re.compile(r"\{\{\s*([A-Z_]+)\s*\}\}")
 _OPT_NAME = re.compile(r"\b(OPT_[A-Z0-9_]+)\b")
 _NUMBER = re.compile(r"(?<![\w.])(\d+(?:\.\d+)?)(?![\w.])")
@@ -62,8 +63,9 @@ def fix_scenic2_new(diagnostic: Diagnostic, text: str, context: RuleContext) -> 
     changed = 0
     for index, row in enumerate(lines):
         code, hash_, comment = row.partition("#")
-        fixed = _SCENIC2.sub(lambda m: f"{m.group('lead')}new {m.group('cls')}{m.group('rest')}",
-                             code)
+        fixed = _SCENIC2.sub(
+            lambda m: f"{m.group('lead')}new {m.group('cls')}{m.group('rest')}", code
+        )
         fixed = re.sub(r"\bnew\s+new\b", "new", fixed)
         if fixed != code:
             lines[index] = fixed + hash_ + comment
@@ -194,12 +196,20 @@ def _relax_numbers(line: str, factor: float) -> str:
     return line
 
 
-def fix_tight_requirement(diagnostic: Diagnostic, text: str, context: RuleContext) -> RuleFix | None:
+def fix_tight_requirement(
+    diagnostic: Diagnostic, text: str, context: RuleContext
+) -> RuleFix | None:
     """A requirement that rejected most samples: relax its numbers, or drop it the third time."""
     if diagnostic.error_type != "RejectionException":
         return None
-    guilty = next((r for r in diagnostic.rejections if r.line and r.code and
-                   r.code.lstrip().startswith("require")), None)
+    guilty = next(
+        (
+            r
+            for r in diagnostic.rejections
+            if r.line and r.code and r.code.lstrip().startswith("require")
+        ),
+        None,
+    )
     if guilty is None or guilty.line is None:
         return None
     lines = _lines(text)
@@ -226,8 +236,9 @@ def fix_overlap(diagnostic: Diagnostic, text: str, context: RuleContext) -> Rule
         return None
     lines = _lines(text)
     row = lines[overlap.line - 1]
-    spaced = re.sub(r"\bby\s+(\d+(?:\.\d+)?)",
-                    lambda m: f"by {max(float(m.group(1)) * 1.5, 3):g}", row)
+    spaced = re.sub(
+        r"\bby\s+(\d+(?:\.\d+)?)", lambda m: f"by {max(float(m.group(1)) * 1.5, 3):g}", row
+    )
     if spaced == row:
         return None
     lines[overlap.line - 1] = spaced
@@ -249,8 +260,15 @@ def fix_forbidden_import(diagnostic: Diagnostic, text: str, context: RuleContext
 
 
 RULES: tuple[Rule, ...] = (
-    fix_placeholders, fix_scenic2_new, fix_undeclared_param, fix_close_name, fix_blueprint,
-    fix_weather, fix_overlap, fix_tight_requirement, fix_forbidden_import,
+    fix_placeholders,
+    fix_scenic2_new,
+    fix_undeclared_param,
+    fix_close_name,
+    fix_blueprint,
+    fix_weather,
+    fix_overlap,
+    fix_tight_requirement,
+    fix_forbidden_import,
 )
 
 

@@ -39,8 +39,11 @@ class AttemptKind(StrEnum):
 
 
 def unified_diff(before: str, after: str) -> str:
-    return "".join(difflib.unified_diff(before.splitlines(True), after.splitlines(True),
-                                        "before.scenic", "after.scenic", n=1))
+    return "".join(
+        difflib.unified_diff(
+            before.splitlines(True), after.splitlines(True), "before.scenic", "after.scenic", n=1
+        )
+    )
 
 
 @dataclass
@@ -61,9 +64,13 @@ class Attempt:
 
     def as_dict(self) -> dict[str, Any]:
         return {
-            "index": self.index, "kind": self.kind.value, "detail": self.detail, "ok": self.ok,
+            "index": self.index,
+            "kind": self.kind.value,
+            "detail": self.detail,
+            "ok": self.ok,
             "diagnostic": self.diagnostic.model_dump(mode="json") if self.diagnostic else None,
-            "diff": self.diff, "check_seconds": round(self.check_seconds, 3),
+            "diff": self.diff,
+            "check_seconds": round(self.check_seconds, 3),
             "sandbox": self.check.sandbox.label if self.check and self.check.sandbox else None,
             "llm": self.llm_usage.as_dict(),
         }
@@ -153,17 +160,21 @@ class Generation:
             "attempts": [a.as_dict() for a in self.attempts],
             "llm": self.usage.as_dict(),
             "seconds": round(self.seconds, 3),
-            "simulation": (final.simulation.model_dump(mode="json", exclude={"agents"})
-                           if final and final.simulation else None),
+            "simulation": (
+                final.simulation.model_dump(mode="json", exclude={"agents"})
+                if final and final.simulation
+                else None
+            ),
             "conformity": self.conformity,
             # The confinement the final script ran under (every attempt has its label).
-            "sandbox": (final.sandbox.model_dump(mode="json")
-                        if final and final.sandbox else None),
+            "sandbox": (final.sandbox.model_dump(mode="json") if final and final.sandbox else None),
         }
 
     def summary(self) -> str:
         if self.ok:
             how = "first try" if self.first_pass_ok else f"after {self.repairs} repair(s)"
-            return (f"executed {how} in {self.seconds:.0f} s, {self.usage.calls} LLM call(s), "
-                    f"{self.usage.total_tokens} tokens")
+            return (
+                f"executed {how} in {self.seconds:.0f} s, {self.usage.calls} LLM call(s), "
+                f"{self.usage.total_tokens} tokens"
+            )
         return f"{self.status.value}: {self.message or ''}".strip()

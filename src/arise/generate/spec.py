@@ -20,8 +20,15 @@ from arise.vocabulary import (
     RoadType,
 )
 
-__all__ = ["AdversaryType", "EgoManeuver", "RelativePosition", "Requirement",
-           "RequirementKind", "RoadType", "ScenarioSpec"]
+__all__ = [
+    "AdversaryType",
+    "EgoManeuver",
+    "RelativePosition",
+    "Requirement",
+    "RequirementKind",
+    "RoadType",
+    "ScenarioSpec",
+]
 
 
 class RequirementKind(StrEnum):
@@ -49,8 +56,9 @@ class ScenarioSpec(BaseModel):
     geometry: str = Field(description="the road layout and the ego's route, in words")
     spawn_position: RelativePosition
     spawn: str = Field(description="where the adversary starts relative to the ego, in words")
-    participants: list[str] = Field(default_factory=list,
-                                    description="other road users and objects, one per item")
+    participants: list[str] = Field(
+        default_factory=list, description="other road users and objects, one per item"
+    )
     weather: str = Field(default=DEFAULT_WEATHER, description="a CARLA weather preset")
     requirements: list[Requirement] = Field(default_factory=list)
 
@@ -61,10 +69,16 @@ class ScenarioSpec(BaseModel):
         if value in WEATHER_PRESETS:
             return value
         words = value.lower()
-        rain = "HardRain" if "heavy" in words or "hard" in words else (
-            "MidRainy" if "rain" in words else None)
-        time = "Night" if "night" in words or "dark" in words else (
-            "Sunset" if "sunset" in words or "dusk" in words else "Noon")
+        rain = (
+            "HardRain"
+            if "heavy" in words or "hard" in words
+            else ("MidRainy" if "rain" in words else None)
+        )
+        time = (
+            "Night"
+            if "night" in words or "dark" in words
+            else ("Sunset" if "sunset" in words or "dusk" in words else "Noon")
+        )
         if rain:
             preset = f"{rain}{time}" if f"{rain}{time}" in WEATHER_PRESETS else f"HardRain{time}"
         elif "wet" in words:

@@ -24,11 +24,17 @@ app = typer.Typer(
     pretty_exceptions_enable=False,
 )
 
-KbDirs = Annotated[list[str] | None, typer.Option(
-    "--kb-dir", help=f"a folder of your own entries that extends ours (repeatable; also "
-                     f"{ENV_VAR}, path-separated)")]
-ComponentOpt = Annotated[Component | None, typer.Option(
-    "--component", "-c", help="only this component")]
+KbDirs = Annotated[
+    list[str] | None,
+    typer.Option(
+        "--kb-dir",
+        help=f"a folder of your own entries that extends ours (repeatable; also "
+        f"{ENV_VAR}, path-separated)",
+    ),
+]
+ComponentOpt = Annotated[
+    Component | None, typer.Option("--component", "-c", help="only this component")
+]
 
 
 def _load(kb_dirs: list[str] | None) -> KnowledgeBase:
@@ -50,33 +56,45 @@ def list_command(kb_dirs: KbDirs = None, component: ComponentOpt = None) -> None
     for entry in kb:
         if component is not None and entry.component is not component:
             continue
-        table.add_row(entry.id, entry.descriptions[0], ", ".join(entry.adversaries) or "any",
-                      ", ".join(entry.map_features))
+        table.add_row(
+            entry.id,
+            entry.descriptions[0],
+            ", ".join(entry.adversaries) or "any",
+            ", ".join(entry.map_features),
+        )
     console.print(table)
     counts = kb.counts()
-    console.print(", ".join(f"{name}: {count}" for name, count in counts.items()) +
-                  f"; {len(kb)} entries")
+    console.print(
+        ", ".join(f"{name}: {count}" for name, count in counts.items()) + f"; {len(kb)} entries"
+    )
 
 
 @app.command("show")
-def show_command(entry_id: Annotated[str, typer.Argument(help="entry id")],
-                 kb_dirs: KbDirs = None) -> None:
+def show_command(
+    entry_id: Annotated[str, typer.Argument(help="entry id")], kb_dirs: KbDirs = None
+) -> None:
     """Show one entry: descriptions, interface and snippet."""
     kb = _load(kb_dirs)
     if entry_id not in kb:
         close = [e.id for e in kb if entry_id.split(".")[-1] in e.id][:5]
-        errors.print(f"no entry {entry_id!r}" + (f"; did you mean {', '.join(close)}?"
-                                                 if close else ""))
+        errors.print(
+            f"no entry {entry_id!r}" + (f"; did you mean {', '.join(close)}?" if close else "")
+        )
         raise typer.Exit(2)
     entry = kb.get(entry_id)
     console.print(f"[bold]{entry.id}[/bold]  ({entry.component.value}, from {entry.source})")
     for description in entry.descriptions:
         console.print(f"  - {description}")
-    for label, values in (("defines", entry.defines), ("needs", entry.needs),
-                          ("params", entry.params), ("placeholders", entry.placeholders),
-                          ("adversaries", entry.adversaries),
-                          ("map features", entry.map_features), ("tags", entry.tags),
-                          ("companions", entry.companions)):
+    for label, values in (
+        ("defines", entry.defines),
+        ("needs", entry.needs),
+        ("params", entry.params),
+        ("placeholders", entry.placeholders),
+        ("adversaries", entry.adversaries),
+        ("map features", entry.map_features),
+        ("tags", entry.tags),
+        ("companions", entry.companions),
+    ):
         if values:
             console.print(f"  {label}: {', '.join(values)}")
     console.print(Syntax(entry.snippet, "python", line_numbers=False))
@@ -105,8 +123,9 @@ def search_command(
         table.add_column(column)
     for chosen in components:
         for rank, hit in enumerate(retriever.search(query, chosen, k), start=1):
-            table.add_row(chosen.value, str(rank), hit.entry.id, f"{hit.score:.3f}",
-                          hit.entry.descriptions[0])
+            table.add_row(
+                chosen.value, str(rank), hit.entry.id, f"{hit.score:.3f}", hit.entry.descriptions[0]
+            )
     console.print(table)
 
 
@@ -114,8 +133,9 @@ def search_command(
 def validate_command(
     kb_dirs: KbDirs = None,
     component: ComponentOpt = None,
-    entry: Annotated[list[str] | None, typer.Option(
-        "--entry", "-e", help="only this entry (repeatable)")] = None,
+    entry: Annotated[
+        list[str] | None, typer.Option("--entry", "-e", help="only this entry (repeatable)")
+    ] = None,
     workers: Annotated[int, typer.Option(help="validator workers in parallel")] = 2,
     seed: Annotated[int, typer.Option(help="random seed for every script")] = 1,
     steps: Annotated[int, typer.Option(help="simulation steps per script")] = 200,
@@ -131,8 +151,11 @@ def validate_command(
     from arise.validate.types import confinement_summary
 
     kb = _load(kb_dirs)
-    only = [e.id for e in kb if (component is None or e.component is component)
-            and (not entry or e.id in entry)]
+    only = [
+        e.id
+        for e in kb
+        if (component is None or e.component is component) and (not entry or e.id in entry)
+    ]
     unknown = sorted(set(entry or ()) - set(kb.entries))
     if unknown:
         errors.print(f"no such entries: {', '.join(unknown)}")
@@ -149,19 +172,36 @@ def validate_command(
     options = CheckOptions(seed=seed, steps=steps, timeout=90)
     report = validate_kb(kb, only=only, options=options, workers=workers, on_outcome=progress)
     if as_json:
-        console.print_json(json.dumps({
-            "ok": report.ok, "checked": len(report.checked), "pass_rate": report.pass_rate(),
-            "seconds": round(report.seconds, 1), "failures": report.failures(),
-            "load_problems": [str(p) for p in report.load_problems],
-            "scripts": [{"name": o.composition.name, "entries": o.composition.ids,
-                         "adversary": o.composition.adversary_class,
-                         "map": o.composition.map_name, "ok": o.ok,
-                         "error": None if o.ok else o.result.summary(),
-                         "sandbox": o.result.sandbox.label if o.result.sandbox else None}
-                        for o in report.outcomes],
-        }))
+        console.print_json(
+            json.dumps(
+                {
+                    "ok": report.ok,
+                    "checked": len(report.checked),
+                    "pass_rate": report.pass_rate(),
+                    "seconds": round(report.seconds, 1),
+                    "failures": report.failures(),
+                    "load_problems": [str(p) for p in report.load_problems],
+                    "scripts": [
+                        {
+                            "name": o.composition.name,
+                            "entries": o.composition.ids,
+                            "adversary": o.composition.adversary_class,
+                            "map": o.composition.map_name,
+                            "ok": o.ok,
+                            "error": None if o.ok else o.result.summary(),
+                            "sandbox": o.result.sandbox.label if o.result.sandbox else None,
+                        }
+                        for o in report.outcomes
+                    ],
+                }
+            )
+        )
     else:
         console.print(report.summary())
-        console.print("sandbox: " + confinement_summary(
-            [o.result.sandbox.label if o.result.sandbox else None for o in report.outcomes]))
+        console.print(
+            "sandbox: "
+            + confinement_summary(
+                [o.result.sandbox.label if o.result.sandbox else None for o in report.outcomes]
+            )
+        )
     raise typer.Exit(0 if report.ok else 1)

@@ -35,19 +35,25 @@ def header(map_name: str) -> str:
     """The HEADER section for one of the registry's maps (resolved by name)."""
     if not re.match(r"^[A-Za-z0-9_.-]+$", map_name):
         raise ComposeError([f"map name {map_name!r} is not a plain map name"])
-    return "\n".join(write_section("HEADER", [
-        f"param map = localPath('maps/{map_name}.xodr')",
-        f"param carla_map = '{map_name}'",
-        "model scenic.simulators.carla.model",
-    ]))
+    return "\n".join(
+        write_section(
+            "HEADER",
+            [
+                f"param map = localPath('maps/{map_name}.xodr')",
+                f"param carla_map = '{map_name}'",
+                "model scenic.simulators.carla.model",
+            ],
+        )
+    )
 
 
 def composition_problems(entries: Sequence[Entry], adversary_class: str) -> list[str]:
     """Why these entries would not make a script (empty when they would)."""
     problems: list[str] = []
     if adversary_class not in ADVERSARY_CLASSES:
-        problems.append(f"adversary class {adversary_class!r} is not one of "
-                        f"{', '.join(ADVERSARY_CLASSES)}")
+        problems.append(
+            f"adversary class {adversary_class!r} is not one of {', '.join(ADVERSARY_CLASSES)}"
+        )
     ids = [entry.id for entry in entries]
     for duplicate in sorted({i for i in ids if ids.count(i) > 1}):
         problems.append(f"{duplicate}: chosen twice")
@@ -59,8 +65,9 @@ def composition_problems(entries: Sequence[Entry], adversary_class: str) -> list
             problems.append(f"no {component.value} entry was chosen")
     for entry in entries:
         if not entry.suits(adversary_class):
-            problems.append(f"{entry.id}: written for {', '.join(entry.adversaries)}, "
-                            f"not {adversary_class}")
+            problems.append(
+                f"{entry.id}: written for {', '.join(entry.adversaries)}, not {adversary_class}"
+            )
     problems += _name_problems(_ordered(entries))
     return problems
 
@@ -83,12 +90,15 @@ def _name_problems(ordered: Sequence[Entry]) -> list[str]:
     defined: set[str] = set()
     for entry in ordered:
         visible = everything if entry.component is Component.BEHAVIOR else defined
-        missing = [name for name in entry.needs if name not in visible
-                   and name not in entry.defines]
+        missing = [
+            name for name in entry.needs if name not in visible and name not in entry.defines
+        ]
         if missing:
-            problems.append(f"{entry.id}: needs {', '.join(missing)}, which no "
-                            f"{'chosen' if entry.component is Component.BEHAVIOR else 'earlier'}"
-                            " entry defines")
+            problems.append(
+                f"{entry.id}: needs {', '.join(missing)}, which no "
+                f"{'chosen' if entry.component is Component.BEHAVIOR else 'earlier'}"
+                " entry defines"
+            )
         for name in entry.defines:
             if name in owner:
                 problems.append(f"{entry.id}: defines {name}, already defined by {owner[name]}")
@@ -101,8 +111,12 @@ def fill_placeholders(snippet: str, values: Mapping[str, str], entry_id: str) ->
     """Substitute `{{NAME}}`; a placeholder without a value is an error naming the entry."""
     missing = sorted({m for m in PLACEHOLDER_PATTERN.findall(snippet) if m not in values})
     if missing:
-        raise ComposeError([f"{entry_id}: no value for placeholder(s) "
-                            f"{', '.join('{{' + m + '}}' for m in missing)}"])
+        raise ComposeError(
+            [
+                f"{entry_id}: no value for placeholder(s) "
+                f"{', '.join('{{' + m + '}}' for m in missing)}"
+            ]
+        )
     return PLACEHOLDER_PATTERN.sub(lambda m: values[m.group(1)], snippet)
 
 
@@ -143,8 +157,11 @@ def compose(
         for entry in chosen:
             body.append(f"# kb: {entry.id}")
             body.append(fill_placeholders(entry.snippet.rstrip("\n"), values, entry.id))
-        if component is Component.REQUIREMENTS and terminate_after is not None and not any(
-                re.search(r"^\s*terminate\b", e.snippet, re.M) for e in chosen):
+        if (
+            component is Component.REQUIREMENTS
+            and terminate_after is not None
+            and not any(re.search(r"^\s*terminate\b", e.snippet, re.M) for e in chosen)
+        ):
             body.append(f"terminate after {terminate_after:g} seconds")
         lines += write_section(component.section, body)
     return "\n".join(lines) + "\n"
@@ -177,6 +194,9 @@ def pick_map(entries: Iterable[Entry], available: Mapping[str, Iterable[str]]) -
     available: map name -> its features (e.g. from MapRegistry().entries).
     """
     wanted = map_features_needed(entries)
-    fitting = [(len(set(features) - wanted), name) for name, features in available.items()
-               if wanted <= set(features)]
+    fitting = [
+        (len(set(features) - wanted), name)
+        for name, features in available.items()
+        if wanted <= set(features)
+    ]
     return min(fitting)[1] if fitting else None

@@ -16,17 +16,38 @@ from dataclasses import dataclass
 from arise.kb.schema import PLACEHOLDER_PATTERN, Component, Entry
 from arise.vocabulary import ACTOR_CLASSES, POINT_CLASSES, PROP_CLASSES
 
-OBJECT_CLASSES = (*ACTOR_CLASSES, *POINT_CLASSES, "Prop", *PROP_CLASSES,
-                  r"\{\{ADVERSARY_CLASS\}\}")
-SPECIFIERS = ("at", "on", "in", "ahead", "behind", "left", "right", "following", "facing",
-              "with", "offset", "beyond", "visible", "not", "apparently", "contained")
+OBJECT_CLASSES = (*ACTOR_CLASSES, *POINT_CLASSES, "Prop", *PROP_CLASSES, r"\{\{ADVERSARY_CLASS\}\}")
+SPECIFIERS = (
+    "at",
+    "on",
+    "in",
+    "ahead",
+    "behind",
+    "left",
+    "right",
+    "following",
+    "facing",
+    "with",
+    "offset",
+    "beyond",
+    "visible",
+    "not",
+    "apparently",
+    "contained",
+)
 # `Car at spot`, `ego = Car`, ... without `new`: Scenic 2 object creation.
 SCENIC2_CREATION = re.compile(
-    r"(?<![\w.])(?<!new )(" + "|".join(OBJECT_CLASSES) + r")(?=\s+(?:" + "|".join(SPECIFIERS)
-    + r")\b|\s*(?:,\s*with\b|$))", re.M)
+    r"(?<![\w.])(?<!new )("
+    + "|".join(OBJECT_CLASSES)
+    + r")(?=\s+(?:"
+    + "|".join(SPECIFIERS)
+    + r")\b|\s*(?:,\s*with\b|$))",
+    re.M,
+)
 SCENIC2_FORMS = {
-    re.compile(r"^\s*import\s+scenic\.simulators\.carla\.(actions|behaviors)\b", re.M):
-        "imports CARLA actions/behaviors by hand (Scenic 2 style; the model brings them)",
+    re.compile(
+        r"^\s*import\s+scenic\.simulators\.carla\.(actions|behaviors)\b", re.M
+    ): "imports CARLA actions/behaviors by hand (Scenic 2 style; the model brings them)",
     re.compile(r"^\s*model\s", re.M): "has a `model` line: only the HEADER names the model",
     re.compile(r"^\s*param\s+(map|carla_map)\b", re.M): "sets the map: only the HEADER does",
 }
@@ -67,11 +88,13 @@ def _scenic2(entry: Entry) -> list[str]:
     code = _code_only(entry.snippet)
     found = []
     for match in SCENIC2_CREATION.finditer(code):
-        line = code[:match.start()].count("\n") + 1
-        found.append(f"Scenic 2 object creation without `new` at snippet line {line} "
-                     f"({match.group(1)})")
-    found += [message for pattern, message in SCENIC2_FORMS.items()
-              if pattern.search(entry.snippet)]
+        line = code[: match.start()].count("\n") + 1
+        found.append(
+            f"Scenic 2 object creation without `new` at snippet line {line} ({match.group(1)})"
+        )
+    found += [
+        message for pattern, message in SCENIC2_FORMS.items() if pattern.search(entry.snippet)
+    ]
     return found
 
 
@@ -88,14 +111,20 @@ def _params(entry: Entry) -> list[str]:
         found.append(f"reads globalParameters.{name} but does not declare `param {name}`")
     for line in code.splitlines():
         if re.match(r"\s*require\b", line) and "globalParameters" in line:
-            found.append("a `require` condition reads globalParameters, which Scenic 3.1 "
-                         f"cannot resolve when it checks the scene: {line.strip()!r}")
-        if re.search(r"(?<![\w.])OPT_[A-Z0-9_]+\b", line) and not line.lstrip().startswith(
-                "param ") and not re.search(r"globalParameters\.OPT_", line):
+            found.append(
+                "a `require` condition reads globalParameters, which Scenic 3.1 "
+                f"cannot resolve when it checks the scene: {line.strip()!r}"
+            )
+        if (
+            re.search(r"(?<![\w.])OPT_[A-Z0-9_]+\b", line)
+            and not line.lstrip().startswith("param ")
+            and not re.search(r"globalParameters\.OPT_", line)
+        ):
             found.append(f"reads an OPT_ param without globalParameters: {line.strip()!r}")
     if set(entry.params) != opt_declared:
-        found.append(f"params: lists {sorted(entry.params)} but the snippet declares "
-                     f"{sorted(opt_declared)}")
+        found.append(
+            f"params: lists {sorted(entry.params)} but the snippet declares {sorted(opt_declared)}"
+        )
     return found
 
 
@@ -114,8 +143,9 @@ def _interface(entry: Entry) -> list[str]:
             found.append(f"needs: lists {name}, which the snippet does not use")
     used = set(PLACEHOLDER_PATTERN.findall(entry.snippet))
     if used != set(entry.placeholders):
-        found.append(f"placeholders: lists {sorted(entry.placeholders)} but the snippet uses "
-                     f"{sorted(used)}")
+        found.append(
+            f"placeholders: lists {sorted(entry.placeholders)} but the snippet uses {sorted(used)}"
+        )
     if re.search(r"\{\{(?![A-Z][A-Z0-9_]*\}\})", entry.snippet):
         found.append("has a malformed {{placeholder}}")
     return found
@@ -126,8 +156,10 @@ def _assembler_names(entry: Entry) -> list[str]:
     snippet = entry.snippet
     if entry.component is Component.BEHAVIOR:
         if not ADVERSARY_BEHAVIOR.search(snippet):
-            found.append("must define `behavior AdversaryBehavior():` (no parameters; read "
-                         "routes and lanes from the names in `needs`)")
+            found.append(
+                "must define `behavior AdversaryBehavior():` (no parameters; read "
+                "routes and lanes from the names in `needs`)"
+            )
         if "AdversaryBehavior" not in entry.defines:
             found.append("defines: must list AdversaryBehavior")
     elif entry.component is Component.SPAWN:
@@ -190,8 +222,12 @@ def lint_needs(entries: Iterable[Entry]) -> list[LintProblem]:
         own = set(entry.defines) | set(entry.needs) | ALWAYS_DEFINED
         for name in sorted(set(vocabulary) - own):
             if re.search(rf"(?<![\w.]){re.escape(name)}\b(?!\s*=[^=])", code):
-                problems.append(LintProblem(entry.id, f"uses {name} (defined by "
-                                            f"{vocabulary[name]}) without listing it in needs"))
+                problems.append(
+                    LintProblem(
+                        entry.id,
+                        f"uses {name} (defined by {vocabulary[name]}) without listing it in needs",
+                    )
+                )
     return problems
 
 

@@ -27,8 +27,7 @@ SUFFIXES = (".yaml", ".yml")
 class KBError(AriseError):
     """A knowledge-base file that cannot be used, with where exactly it went wrong."""
 
-    def __init__(self, file: str, message: str, entry: str | None = None,
-                 field: str | None = None):
+    def __init__(self, file: str, message: str, entry: str | None = None, field: str | None = None):
         self.file, self.entry, self.field, self.message = file, entry, field, message
         where = [file]
         if entry is not None:
@@ -92,13 +91,17 @@ def _component_files(folder: Path) -> tuple[list[tuple[Component, Path]], list[K
         if path.name.startswith((".", "_")) or path.name.lower() == "readme.md":
             continue
         if path.is_dir() and path.name in names:
-            pairs += [(names[path.name], p) for p in sorted(path.iterdir())
-                      if p.suffix in SUFFIXES]
+            pairs += [(names[path.name], p) for p in sorted(path.iterdir()) if p.suffix in SUFFIXES]
         elif path.is_file() and path.suffix in SUFFIXES and path.stem in names:
             pairs.append((names[path.stem], path))
         else:
-            problems.append(KBError(str(path), "not a knowledge-base file: name files or "
-                                    f"folders after a component ({', '.join(names)})"))
+            problems.append(
+                KBError(
+                    str(path),
+                    "not a knowledge-base file: name files or "
+                    f"folders after a component ({', '.join(names)})",
+                )
+            )
     return pairs, problems
 
 
@@ -109,15 +112,19 @@ def _raw_entries(path: Path, component: Component) -> list[Any]:
     except yaml.YAMLError as error:
         mark = getattr(error, "problem_mark", None)
         line = f" at line {mark.line + 1}" if mark is not None else ""
-        raise KBError(str(path), f"not valid YAML{line}: "
-                      f"{getattr(error, 'problem', None) or error}") from None
+        raise KBError(
+            str(path), f"not valid YAML{line}: {getattr(error, 'problem', None) or error}"
+        ) from None
     except (OSError, UnicodeDecodeError) as error:
         raise KBError(str(path), f"cannot read: {error}") from None
     if isinstance(data, dict) and "entries" in data:
         declared = data.get("component")
         if declared is not None and declared != component.value:
-            raise KBError(str(path), f"says component {declared!r} but its name says "
-                          f"{component.value!r}", field="component")
+            raise KBError(
+                str(path),
+                f"says component {declared!r} but its name says {component.value!r}",
+                field="component",
+            )
         data = data["entries"]
     elif isinstance(data, dict):
         data = [data]
@@ -141,16 +148,22 @@ def load_file(path: Path, component: Component) -> list[Entry]:
             raise KBError(str(path), "an entry must be a mapping of fields", entry=label)
         declared = raw.get("component", component.value)
         if declared != component.value:
-            raise KBError(str(path), f"is {declared!r} in a {component.value!r} file",
-                          entry=label, field="component")
+            raise KBError(
+                str(path),
+                f"is {declared!r} in a {component.value!r} file",
+                entry=label,
+                field="component",
+            )
         try:
-            entries.append(Entry.model_validate({**raw, "component": component.value,
-                                                 "source": str(path)}))
+            entries.append(
+                Entry.model_validate({**raw, "component": component.value, "source": str(path)})
+            )
         except ValidationError as error:
             first = error.errors()[0]
             where = ".".join(str(part) for part in first["loc"]) or None
-            more = f" (and {error.error_count() - 1} more problems)" \
-                if error.error_count() > 1 else ""
+            more = (
+                f" (and {error.error_count() - 1} more problems)" if error.error_count() > 1 else ""
+            )
             raise KBError(str(path), first["msg"] + more, entry=label, field=where) from None
     return entries
 
@@ -174,8 +187,12 @@ def load_folder(folder: Path, kb: KnowledgeBase) -> None:
         for entry in entries:
             if entry.id in kb.entries or entry.id in seen:
                 first = kb.entries[entry.id].source if entry.id in kb.entries else str(path)
-                clash = KBError(str(path), f"duplicate id (already defined in {first})",
-                                entry=f"'{entry.id}'", field="id")
+                clash = KBError(
+                    str(path),
+                    f"duplicate id (already defined in {first})",
+                    entry=f"'{entry.id}'",
+                    field="id",
+                )
                 break
             seen[entry.id] = str(path)
         if clash is not None:
@@ -184,8 +201,9 @@ def load_folder(folder: Path, kb: KnowledgeBase) -> None:
         kb.entries.update((entry.id, entry) for entry in entries)
 
 
-def load_kb(extra_dirs: Sequence[str | os.PathLike[str]] = (), *, builtin: bool = True,
-            strict: bool = False) -> KnowledgeBase:
+def load_kb(
+    extra_dirs: Sequence[str | os.PathLike[str]] = (), *, builtin: bool = True, strict: bool = False
+) -> KnowledgeBase:
     """Our entries (unless builtin=False), then the user's folders in order.
 
     With strict=True the first problem is raised instead of recorded.

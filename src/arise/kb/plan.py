@@ -37,8 +37,12 @@ class Composition:
         return [entry.id for entry in self.entries]
 
     def script(self) -> str:
-        return compose(self.entries, self.adversary_class, self.map_name,
-                       description=f"{self.name}: {', '.join(self.ids)}")
+        return compose(
+            self.entries,
+            self.adversary_class,
+            self.map_name,
+            description=f"{self.name}: {', '.join(self.ids)}",
+        )
 
 
 @dataclass
@@ -50,8 +54,9 @@ class Plan:
         return [c for c in self.compositions if entry_id in c.ids]
 
 
-def _fits(entries: Sequence[Entry], adversary: str,
-          maps: Mapping[str, Iterable[str]]) -> str | None:
+def _fits(
+    entries: Sequence[Entry], adversary: str, maps: Mapping[str, Iterable[str]]
+) -> str | None:
     """The map these entries would run on, or None if they do not compose."""
     if composition_problems(entries, adversary):
         return None
@@ -68,10 +73,10 @@ class _Planner:
         self.adversary_usage: Counter[tuple[str, str]] = Counter()
         self.compositions: list[Composition] = []
 
-    def _score(self, target: Entry, core: tuple[Entry, Entry, Entry], adversary: str
-               ) -> tuple[int, int, int, int]:
-        companions = sum(1 for e in core if e.id in target.companions or
-                         target.id in e.companions)
+    def _score(
+        self, target: Entry, core: tuple[Entry, Entry, Entry], adversary: str
+    ) -> tuple[int, int, int, int]:
+        companions = sum(1 for e in core if e.id in target.companions or target.id in e.companions)
         fresh = sum(1 for e in core if self.usage[e.id] == 0)
         used = sum(self.usage[e.id] for e in core)
         rotation = sum(self.adversary_usage[(e.id, adversary)] for e in core)
@@ -112,8 +117,9 @@ class _Planner:
         if best is None:
             return None
         _, entries, adversary, map_name = best
-        composition = Composition(f"kb-{len(self.compositions) + 1:03d}", entries, adversary,
-                                  map_name)
+        composition = Composition(
+            f"kb-{len(self.compositions) + 1:03d}", entries, adversary, map_name
+        )
         self._count(composition, entries)
         self.compositions.append(composition)
         return composition
@@ -128,8 +134,7 @@ class _Planner:
         limit = ATTACH_LIMITS[entry.component]
 
         def companions(c: Composition) -> int:
-            return sum(1 for e in c.entries if e.id in entry.companions or
-                       entry.id in e.companions)
+            return sum(1 for e in c.entries if e.id in entry.companions or entry.id in e.companions)
 
         def rank(c: Composition) -> tuple[int, int]:
             load = sum(1 for e in c.entries if e.component is entry.component)
@@ -151,8 +156,9 @@ class _Planner:
         return False
 
 
-def plan_validation(entries: Sequence[Entry], maps: Mapping[str, Iterable[str]],
-                    only: Iterable[str] | None = None) -> Plan:
+def plan_validation(
+    entries: Sequence[Entry], maps: Mapping[str, Iterable[str]], only: Iterable[str] | None = None
+) -> Plan:
     """Compositions that include every entry (or every entry in `only`) at least once.
 
     entries: the whole knowledge base (partners may come from any of it).
@@ -168,8 +174,10 @@ def plan_validation(entries: Sequence[Entry], maps: Mapping[str, Iterable[str]],
             if entry.id not in wanted or planner.usage[entry.id]:
                 continue
             if planner.add_core(entry) is None:
-                uncovered[entry.id] = ("no behavior+geometry+spawn combination with this "
-                                       "entry composes (check needs, adversaries, map features)")
+                uncovered[entry.id] = (
+                    "no behavior+geometry+spawn combination with this "
+                    "entry composes (check needs, adversaries, map features)"
+                )
     if not planner.compositions:
         # Attachable entries alone still need a core to ride on.
         for entry in planner.by_component[Component.BEHAVIOR]:
@@ -187,8 +195,11 @@ def plan_validation(entries: Sequence[Entry], maps: Mapping[str, Iterable[str]],
             # built around a companion when the entry names one.
             fitted = False
             core_ids = {e.id for c in core_components for e in planner.by_component[c]}
-            seeds = [planner_entry for planner_entry in entries
-                     if planner_entry.id in entry.companions and planner_entry.id in core_ids]
+            seeds = [
+                planner_entry
+                for planner_entry in entries
+                if planner_entry.id in entry.companions and planner_entry.id in core_ids
+            ]
             for behavior in seeds or planner.by_component[Component.BEHAVIOR]:
                 composition = planner.add_core(behavior)
                 if composition is None:
@@ -201,6 +212,8 @@ def plan_validation(entries: Sequence[Entry], maps: Mapping[str, Iterable[str]],
                     planner.usage[e.id] -= 1
                     planner.adversary_usage[(e.id, composition.adversary_class)] -= 1
             if not fitted:
-                uncovered[entry.id] = (f"fits no script: its needs {entry.needs} or map "
-                                       f"features {entry.map_features} match no core")
+                uncovered[entry.id] = (
+                    f"fits no script: its needs {entry.needs} or map "
+                    f"features {entry.map_features} match no core"
+                )
     return Plan(planner.compositions, uncovered)

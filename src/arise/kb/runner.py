@@ -79,14 +79,14 @@ class KBReport:
 
     def passed_ids(self) -> set[str]:
         ran_ok = {i for o in self.outcomes if o.ok for i in o.composition.ids}
-        ran_bad = {i for o in self.outcomes if not o.ok for i in o.composition.ids
-                   if i == o.culprit}
+        ran_bad = {
+            i for o in self.outcomes if not o.ok for i in o.composition.ids if i == o.culprit
+        }
         return (ran_ok - ran_bad) & set(self.checked)
 
     @property
     def ok(self) -> bool:
-        return not self.failures() and not self.load_problems and all(
-            o.ok for o in self.outcomes)
+        return not self.failures() and not self.load_problems and all(o.ok for o in self.outcomes)
 
     def pass_rate(self) -> float:
         if not self.checked:
@@ -97,9 +97,11 @@ class KBReport:
     def summary(self) -> str:
         scripts_ok = sum(1 for o in self.outcomes if o.ok)
         failed = self.failures()
-        lines = [f"{len(self.checked) - len(failed)}/{len(self.checked)} entries proven "
-                 f"({100 * self.pass_rate():.1f}%), {scripts_ok}/{len(self.outcomes)} scripts "
-                 f"ran, {self.seconds:.0f}s"]
+        lines = [
+            f"{len(self.checked) - len(failed)}/{len(self.checked)} entries proven "
+            f"({100 * self.pass_rate():.1f}%), {scripts_ok}/{len(self.outcomes)} scripts "
+            f"ran, {self.seconds:.0f}s"
+        ]
         lines += [f"load problem: {problem}" for problem in self.load_problems]
         for entry_id in sorted(failed):
             for why in failed[entry_id]:
@@ -115,8 +117,11 @@ def builtin_maps() -> dict[str, frozenset[str]]:
     from arise.maps.registry import MapRegistry
 
     registry = MapRegistry(map_dir=None)
-    return {name: entry.features for name, entry in registry.entries.items()
-            if entry.source == "builtin"}
+    return {
+        name: entry.features
+        for name, entry in registry.entries.items()
+        if entry.source == "builtin"
+    }
 
 
 def validate_kb(
@@ -138,8 +143,12 @@ def validate_kb(
     checked = [e.id for e in entries if only is None or e.id in set(only)]
     lint_problems = [p for p in lint_all(entries) if p.entry in checked]
     plan = plan_validation(entries, maps or builtin_maps(), only=checked)
-    report = KBReport(checked=checked, lint_problems=lint_problems,
-                      load_problems=list(kb.problems), uncovered=plan.uncovered)
+    report = KBReport(
+        checked=checked,
+        lint_problems=lint_problems,
+        load_problems=list(kb.problems),
+        uncovered=plan.uncovered,
+    )
     options = options or DEFAULT_OPTIONS
 
     def run(composition: Composition, active: WorkerPool) -> ScriptOutcome:

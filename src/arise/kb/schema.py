@@ -45,35 +45,43 @@ class Entry(BaseModel):
 
     id: str = Field(description="unique id, lower_snake_case, e.g. 'behavior.sudden_brake'")
     component: Component
-    descriptions: list[str] = Field(min_length=1,
-                                    description="natural-language descriptions (paraphrases)")
+    descriptions: list[str] = Field(
+        min_length=1, description="natural-language descriptions (paraphrases)"
+    )
     snippet: str = Field(min_length=1, description="Scenic 3 code of this entry's section")
-    defines: list[str] = Field(default_factory=list,
-                               description="global names the snippet defines")
-    needs: list[str] = Field(default_factory=list,
-                             description="names the snippet uses that other entries define")
-    params: list[str] = Field(default_factory=list,
-                              description="the OPT_* global parameters the snippet declares")
-    placeholders: list[str] = Field(default_factory=list,
-                                    description="{{NAME}} placeholders the assembler fills")
-    adversaries: list[str] = Field(default_factory=list,
-                                   description="adversary classes it suits (empty: any)")
-    map_features: list[str] = Field(default_factory=list,
-                                    description="map features the snippet needs")
+    defines: list[str] = Field(default_factory=list, description="global names the snippet defines")
+    needs: list[str] = Field(
+        default_factory=list, description="names the snippet uses that other entries define"
+    )
+    params: list[str] = Field(
+        default_factory=list, description="the OPT_* global parameters the snippet declares"
+    )
+    placeholders: list[str] = Field(
+        default_factory=list, description="{{NAME}} placeholders the assembler fills"
+    )
+    adversaries: list[str] = Field(
+        default_factory=list, description="adversary classes it suits (empty: any)"
+    )
+    map_features: list[str] = Field(
+        default_factory=list, description="map features the snippet needs"
+    )
     tags: list[str] = Field(default_factory=list)
     companions: list[str] = Field(
         default_factory=list,
         description="ids of entries it is known to compose well with (tried first when "
-                    "validating; a hint for the generator)")
-    source: str | None = Field(default=None, description="file the entry came from (set "
-                                                         "by the loader)")
+        "validating; a hint for the generator)",
+    )
+    source: str | None = Field(
+        default=None, description="file the entry came from (set by the loader)"
+    )
 
     @field_validator("id")
     @classmethod
     def _id_shape(cls, value: str) -> str:
         if not ID_PATTERN.match(value):
-            raise ValueError("must be lower_snake_case words joined by dots, e.g. "
-                             "'behavior.sudden_brake'")
+            raise ValueError(
+                "must be lower_snake_case words joined by dots, e.g. 'behavior.sudden_brake'"
+            )
         return value
 
     @field_validator("descriptions")
@@ -112,8 +120,10 @@ class Entry(BaseModel):
     def _adversaries(cls, value: list[str]) -> list[str]:
         bad = [name for name in value if name not in ADVERSARY_CLASSES]
         if bad:
-            raise ValueError(f"unknown adversary class {', '.join(bad)}; choose from "
-                             f"{', '.join(ADVERSARY_CLASSES)}")
+            raise ValueError(
+                f"unknown adversary class {', '.join(bad)}; choose from "
+                f"{', '.join(ADVERSARY_CLASSES)}"
+            )
         return value
 
     @field_validator("map_features")
@@ -121,8 +131,9 @@ class Entry(BaseModel):
     def _features(cls, value: list[str]) -> list[str]:
         bad = [name for name in value if name not in MAP_FEATURES]
         if bad:
-            raise ValueError(f"unknown map feature {', '.join(bad)}; choose from "
-                             f"{', '.join(MAP_FEATURES)}")
+            raise ValueError(
+                f"unknown map feature {', '.join(bad)}; choose from {', '.join(MAP_FEATURES)}"
+            )
         return value
 
     def suits(self, adversary_class: str) -> bool:

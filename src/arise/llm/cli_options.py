@@ -6,8 +6,7 @@ from typing import Annotated
 
 import typer
 
-ProviderOption = Annotated[str | None, typer.Option(
-    help="LLM provider (see `arise llm info`).")]
+ProviderOption = Annotated[str | None, typer.Option(help="LLM provider (see `arise llm info`).")]
 ModelOption = Annotated[str | None, typer.Option(help="Model name for the provider.")]
 NoCacheOption = Annotated[bool, typer.Option("--no-cache", help="Do not use the LLM cache.")]
 RecordOption = Annotated[str | None, typer.Option(help="Record LLM calls to this cassette.")]

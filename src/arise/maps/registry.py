@@ -66,16 +66,22 @@ class MapRegistry:
         for name, entry in _load_catalogue("maps.json").items():
             path = data_dir / entry.get("file", f"{name}.xodr")
             if path.exists():
-                self.entries[name] = MapEntry(name, path, frozenset(entry.get("features", ())),
-                                              entry.get("description", ""), "builtin")
+                self.entries[name] = MapEntry(
+                    name,
+                    path,
+                    frozenset(entry.get("features", ())),
+                    entry.get("description", ""),
+                    "builtin",
+                )
         if self.map_dir is not None:
             if not self.map_dir.is_dir():
                 raise MapError(f"map folder {self.map_dir} does not exist")
             for path in sorted(self.map_dir.glob("*.xodr")):
                 features = self.known_features.get(path.stem, frozenset())
                 description = towns.get(path.stem, {}).get("description", "")
-                self.entries[path.stem] = MapEntry(path.stem, path, features, description,
-                                                   "map-dir")
+                self.entries[path.stem] = MapEntry(
+                    path.stem, path, features, description, "map-dir"
+                )
 
     def names(self) -> list[str]:
         return sorted(self.entries)
@@ -89,8 +95,9 @@ class MapRegistry:
         """The available map sharing most of the wanted features (CARLA towns win ties)."""
         candidates = [e for e in self.entries.values() if e.name != exclude]
         if not candidates:
-            raise MapError("no maps are available: the package data is missing and no "
-                           "--map-dir was given")
+            raise MapError(
+                "no maps are available: the package data is missing and no --map-dir was given"
+            )
 
         def score(entry: MapEntry) -> tuple[int, int, int, str]:
             shared = len(wanted & entry.features)
@@ -99,36 +106,52 @@ class MapRegistry:
 
         return max(candidates, key=score)
 
-    def resolve(self, requested: str | None, requested_file: str | None = None,
-                script_dir: Path | None = None) -> MapChoice:
+    def resolve(
+        self,
+        requested: str | None,
+        requested_file: str | None = None,
+        script_dir: Path | None = None,
+    ) -> MapChoice:
         """Choose the map for a script and copy it into the cache."""
         if requested_file:
             for candidate in _file_candidates(requested_file, script_dir):
                 if candidate.is_file():
-                    return MapChoice(requested=requested_file, name=candidate.stem,
-                                     path=str(cached_copy(candidate)))
+                    return MapChoice(
+                        requested=requested_file,
+                        name=candidate.stem,
+                        path=str(cached_copy(candidate)),
+                    )
         if requested and requested in self.entries:
             entry = self.entries[requested]
             assert entry.path is not None
-            return MapChoice(requested=requested, name=entry.name,
-                             path=str(cached_copy(entry.path)))
+            return MapChoice(
+                requested=requested, name=entry.name, path=str(cached_copy(entry.path))
+            )
         if requested is None:
             entry = self.entries.get(DEFAULT_MAP) or self.best_match(frozenset(GENERIC_NEEDS))
             assert entry.path is not None
-            return MapChoice(requested=None, name=entry.name, path=str(cached_copy(entry.path)),
-                             substituted=True,
-                             reason=f"the script names no map; used {entry.name}")
+            return MapChoice(
+                requested=None,
+                name=entry.name,
+                path=str(cached_copy(entry.path)),
+                substituted=True,
+                reason=f"the script names no map; used {entry.name}",
+            )
         wanted = self.features_wanted(requested)
         entry = self.best_match(wanted)
         assert entry.path is not None
         shared = sorted(wanted & entry.features)
         known = "known features" if requested in self.known_features else "assumed features"
         return MapChoice(
-            requested=requested, name=entry.name, path=str(cached_copy(entry.path)),
+            requested=requested,
+            name=entry.name,
+            path=str(cached_copy(entry.path)),
             substituted=True,
-            reason=(f"map {requested} is not available here; substituted {entry.name}, which "
-                    f"has {', '.join(shared) or 'none'} of its {known} "
-                    f"({', '.join(sorted(wanted))})"),
+            reason=(
+                f"map {requested} is not available here; substituted {entry.name}, which "
+                f"has {', '.join(shared) or 'none'} of its {known} "
+                f"({', '.join(sorted(wanted))})"
+            ),
         )
 
 
@@ -160,5 +183,3 @@ def cached_copy(path: Path) -> Path:
         out.write(data)
     os.replace(temporary, target)
     return target
-
-

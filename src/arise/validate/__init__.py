@@ -4,5 +4,12 @@ from arise.validate.api import check, check_text
 from arise.validate.pool import WorkerPool
 from arise.validate.types import CheckOptions, CheckResult, Diagnostic, Stage
 
-__all__ = ["CheckOptions", "CheckResult", "Diagnostic", "Stage", "WorkerPool", "check",
-           "check_text"]
+__all__ = [
+    "CheckOptions",
+    "CheckResult",
+    "Diagnostic",
+    "Stage",
+    "WorkerPool",
+    "check",
+    "check_text",
+]

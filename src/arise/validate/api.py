@@ -18,10 +18,14 @@ from arise.validate.script_info import read_script_info
 from arise.validate.types import CheckOptions, CheckResult, Diagnostic, Simulator, Stage
 
 
-def _failure(script: str, stage: Stage, error_type: str, message: str,
-             hint: str | None = None) -> CheckResult:
-    return CheckResult(ok=False, script=script, diagnostic=Diagnostic(
-        stage=stage, error_type=error_type, message=message, hint=hint))
+def _failure(
+    script: str, stage: Stage, error_type: str, message: str, hint: str | None = None
+) -> CheckResult:
+    return CheckResult(
+        ok=False,
+        script=script,
+        diagnostic=Diagnostic(stage=stage, error_type=error_type, message=message, hint=hint),
+    )
 
 
 def check(
@@ -48,38 +52,62 @@ def check(
     try:
         text = path.read_text(encoding="utf-8")
     except (OSError, UnicodeDecodeError) as error:
-        return _failure(name, Stage.GATE, type(error).__name__,
-                        f"cannot read {path} as UTF-8 text: {error}")
+        return _failure(
+            name, Stage.GATE, type(error).__name__, f"cannot read {path} as UTF-8 text: {error}"
+        )
     if not text.strip():
-        return _failure(name, Stage.PARSE, "EmptyScript", "the script is empty",
-                        "write at least a `model` line, a map and an `ego = new Car`")
+        return _failure(
+            name,
+            Stage.PARSE,
+            "EmptyScript",
+            "the script is empty",
+            "write at least a `model` line, a map and an `ego = new Car`",
+        )
     info = read_script_info(text)
     try:
         registry = registry or MapRegistry(options.map_dir)
-        choice = registry.resolve(info.requested_map,
-                                  _trusted_map_file(info.requested_map_file, path),
-                                  path.resolve().parent)
+        choice = registry.resolve(
+            info.requested_map,
+            _trusted_map_file(info.requested_map_file, path),
+            path.resolve().parent,
+        )
         prepare_map(Path(choice.path))
     except (MapError, MapPreparationError) as error:
         return _failure(name, Stage.COMPILE, "MapError", str(error))
     if options.simulator == Simulator.CARLA:
-        reason = unreachable_reason(options.carla_host, options.carla_port,
-                                    min(options.carla_timeout, 5.0))
+        reason = unreachable_reason(
+            options.carla_host, options.carla_port, min(options.carla_timeout, 5.0)
+        )
         if reason:
             return _failure(name, Stage.SIMULATE, "CarlaUnreachable", reason)
-    request = {"text": text, "name": path.name, "options": options.model_dump(mode="json"),
-               "map": choice.model_dump(mode="json")}
+    request = {
+        "text": text,
+        "name": path.name,
+        "options": options.model_dump(mode="json"),
+        "map": choice.model_dump(mode="json"),
+    }
     own_pool = pool is None
     active = pool or WorkerPool(size=1, memory_mb=options.memory_mb)
     try:
         raw = active.run(request, options.timeout, on_stage)
     except WorkerDied as death:
-        return CheckResult(ok=False, script=name, diagnostic=death.diagnostic, map=choice,
-                           model=info.model, sandbox=death.sandbox)
+        return CheckResult(
+            ok=False,
+            script=name,
+            diagnostic=death.diagnostic,
+            map=choice,
+            model=info.model,
+            sandbox=death.sandbox,
+        )
     except SandboxRequired as refusal:
-        result = _failure(name, Stage.GATE, "SandboxUnavailable", str(refusal),
-                          "run on Linux >= 6.7 with Landlock enabled and libseccomp installed, "
-                          "or in a container or VM (see docs/security.md)")
+        result = _failure(
+            name,
+            Stage.GATE,
+            "SandboxUnavailable",
+            str(refusal),
+            "run on Linux >= 6.7 with Landlock enabled and libseccomp installed, "
+            "or in a container or VM (see docs/security.md)",
+        )
         result.sandbox = refusal.sandbox
         return result
     finally:
@@ -89,16 +117,22 @@ def check(
     try:
         result = CheckResult.model_validate(raw)
     except ValueError as error:
-        return _failure(name, Stage.SIMULATE, "ProtocolViolation",
-                        f"the worker's result was malformed ({str(error).splitlines()[0]})")
+        return _failure(
+            name,
+            Stage.SIMULATE,
+            "ProtocolViolation",
+            f"the worker's result was malformed ({str(error).splitlines()[0]})",
+        )
     result.script = name
     # The verdict follows from the facts, not from a flag the script's process may forge.
     result.ok = result.diagnostic is None and result.simulation is not None
     if not result.ok and result.diagnostic is None:
         result.diagnostic = Diagnostic(
-            stage=Stage.SIMULATE, error_type="ProtocolViolation",
+            stage=Stage.SIMULATE,
+            error_type="ProtocolViolation",
             message="the check reported success without a simulation (a forged result?)",
-            hint="the script wrote on the validator's result channel; remove that code.")
+            hint="the script wrote on the validator's result channel; remove that code.",
+        )
     result.png = _write_png(options.png, png_data) if result.png else None
     return result
 

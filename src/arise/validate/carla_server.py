@@ -11,5 +11,7 @@ def unreachable_reason(host: str, port: int, timeout: float = 3.0) -> str | None
         with socket.create_connection((host, port), timeout=timeout):
             return None
     except OSError as error:
-        return (f"no CARLA server answers at {host}:{port} ({error.strerror or error}); "
-                "start CARLA or pass --carla-host/--carla-port, or use --simulator offline")
+        return (
+            f"no CARLA server answers at {host}:{port} ({error.strerror or error}); "
+            "start CARLA or pass --carla-host/--carla-port, or use --simulator offline"
+        )

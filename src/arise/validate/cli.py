@@ -22,8 +22,13 @@ from arise.validate.types import CheckOptions, CheckResult, SandboxReport, Simul
 console = Console(soft_wrap=True)
 errors = Console(stderr=True, soft_wrap=True)
 
-STAGE_WORDS = {"gate": "static gate", "parse": "parsing", "compile": "compiling",
-               "sample": "sampling a scene", "simulate": "simulating"}
+STAGE_WORDS = {
+    "gate": "static gate",
+    "parse": "parsing",
+    "compile": "compiling",
+    "sample": "sampling a scene",
+    "simulate": "simulating",
+}
 
 CHECK_HELP = """Prove that Scenic 3 scripts execute: static gate, compile, sample a scene, simulate.
 
@@ -59,16 +64,22 @@ def _png_target(png: str | None, script: Path, many: bool) -> str | None:
 def _print_result(result: CheckResult) -> None:
     ok = result.ok
     title = f"[bold]{result.script}[/bold]"
-    console.print(("[green]✔[/green] " if ok else "[red]✘[/red] ") + title + "  " +
-                  result.summary())
+    console.print(
+        ("[green]✔[/green] " if ok else "[red]✘[/red] ") + title + "  " + result.summary()
+    )
     if result.map is not None:
-        note = f" (substitute for {result.map.requested})" if result.map.substituted and \
-            result.map.requested else ""
+        note = (
+            f" (substitute for {result.map.requested})"
+            if result.map.substituted and result.map.requested
+            else ""
+        )
         console.print(f"  map: {result.map.name}{note}")
     print_sandbox(result.sandbox)
     for rejection in result.simulation_rejections:
-        console.print(f"  [yellow]note:[/yellow] {rejection.count} simulation(s) rejected "
-                      f"before this one: {rejection.reason}")
+        console.print(
+            f"  [yellow]note:[/yellow] {rejection.count} simulation(s) rejected "
+            f"before this one: {rejection.reason}"
+        )
     for warning in result.warnings:
         console.print(f"  [yellow]note:[/yellow] {warning}")
     if result.diagnostic is not None:
@@ -87,16 +98,26 @@ def _print_result(result: CheckResult) -> None:
             body.append(f"rejected {rejection.count}x: {rejection.reason}")
         if d.hint:
             body.append(f"\n[cyan]hint:[/cyan] {d.hint}")
-        console.print(Panel("\n".join(body), title=f"failed in stage '{d.stage.value}'",
-                            border_style="red", expand=False))
+        console.print(
+            Panel(
+                "\n".join(body),
+                title=f"failed in stage '{d.stage.value}'",
+                border_style="red",
+                expand=False,
+            )
+        )
     if result.simulation is not None and result.simulation.ego_pairs:
         table = Table(title="ego vs. others", show_edge=False)
         for column in ("agent", "min distance (m)", "at step", "min TTC (s)", "collision"):
             table.add_column(column)
         for pair in result.simulation.ego_pairs:
-            table.add_row(pair.other, f"{pair.min_distance:.2f}", str(pair.min_distance_step),
-                          "-" if pair.min_ttc is None else f"{pair.min_ttc:.2f}",
-                          "yes" if pair.collided else "no")
+            table.add_row(
+                pair.other,
+                f"{pair.min_distance:.2f}",
+                str(pair.min_distance_step),
+                "-" if pair.min_ttc is None else f"{pair.min_ttc:.2f}",
+                "yes" if pair.collided else "no",
+            )
         console.print(table)
     if result.timings:
         console.print("  timings: " + ", ".join(f"{k} {v:.2f}s" for k, v in result.timings.items()))
@@ -107,8 +128,7 @@ def _print_result(result: CheckResult) -> None:
 def print_sandbox(sandbox: SandboxReport | None, indent: str = "  ") -> None:
     """One line saying which confinement a script ran under; loud when incomplete."""
     if sandbox is None:
-        console.print(f"{indent}sandbox: [yellow]none (the script never reached a worker)"
-                      "[/yellow]")
+        console.print(f"{indent}sandbox: [yellow]none (the script never reached a worker)[/yellow]")
     elif sandbox.full:
         console.print(f"{indent}sandbox: {sandbox.label}")
     else:
@@ -119,44 +139,64 @@ def print_sandbox(sandbox: SandboxReport | None, indent: str = "  ") -> None:
 
 def check_command(
     scripts: Annotated[list[Path], typer.Argument(help="Scenic files to check.")],
-    simulator: Annotated[Simulator, typer.Option(
-        help="offline (arise's world model) or carla (a CARLA server).")] = Simulator.OFFLINE,
-    map_dir: Annotated[str | None, typer.Option(
-        help="Folder of extra .xodr maps, e.g. CARLA towns (env ARISE_MAP_DIR).")] = None,
+    simulator: Annotated[
+        Simulator, typer.Option(help="offline (arise's world model) or carla (a CARLA server).")
+    ] = Simulator.OFFLINE,
+    map_dir: Annotated[
+        str | None,
+        typer.Option(help="Folder of extra .xodr maps, e.g. CARLA towns (env ARISE_MAP_DIR)."),
+    ] = None,
     steps: Annotated[int, typer.Option(help="Simulation steps to run.")] = 300,
-    spawn_attempts: Annotated[int, typer.Option(
-        help="Scenes to try when a spawn fails or a simulation is rejected.")] = 15,
-    sample_iterations: Annotated[int, typer.Option(
-        help="Rejection-sampling iterations per scene.")] = 500,
+    spawn_attempts: Annotated[
+        int, typer.Option(help="Scenes to try when a spawn fails or a simulation is rejected.")
+    ] = 15,
+    sample_iterations: Annotated[
+        int, typer.Option(help="Rejection-sampling iterations per scene.")
+    ] = 500,
     seed: Annotated[int | None, typer.Option(help="Random seed, for a repeatable run.")] = None,
     timeout: Annotated[float, typer.Option(help="Wall-clock limit per script, seconds.")] = 60,
     memory_mb: Annotated[int, typer.Option(help="Memory limit per check, MB.")] = 1536,
     as_json: Annotated[bool, typer.Option("--json", help="Print results as JSON.")] = False,
-    png: Annotated[str | None, typer.Option(
-        help="Write a picture of the scene and trajectories (a folder if several scripts).")]
-    = None,
+    png: Annotated[
+        str | None,
+        typer.Option(
+            help="Write a picture of the scene and trajectories (a folder if several scripts)."
+        ),
+    ] = None,
     carla_host: Annotated[str, typer.Option(help="CARLA server host.")] = "127.0.0.1",
     carla_port: Annotated[int, typer.Option(help="CARLA server port.")] = 2000,
     workers: Annotated[int, typer.Option(help="Parallel worker processes.")] = 1,
-    require_sandbox: Annotated[bool, typer.Option(
-        "--require-sandbox",
-        help="Refuse to run a script unless every confinement mechanism is active "
-             "(also ARISE_REQUIRE_SANDBOX=1 or `[sandbox] require = true` in the config).")]
-    = False,
+    require_sandbox: Annotated[
+        bool,
+        typer.Option(
+            "--require-sandbox",
+            help="Refuse to run a script unless every confinement mechanism is active "
+            "(also ARISE_REQUIRE_SANDBOX=1 or `[sandbox] require = true` in the config).",
+        ),
+    ] = False,
 ) -> None:
     try:
         registry = MapRegistry(map_dir)
     except MapError as error:
         errors.print(f"[red]error:[/red] {error}")
         raise typer.Exit(2) from None
-    options = CheckOptions(simulator=simulator, map_dir=map_dir, steps=steps,
-                           spawn_attempts=spawn_attempts, sample_iterations=sample_iterations,
-                           seed=seed, timeout=timeout, memory_mb=memory_mb,
-                           carla_host=carla_host, carla_port=carla_port,
-                           require_sandbox=require_sandbox)
+    options = CheckOptions(
+        simulator=simulator,
+        map_dir=map_dir,
+        steps=steps,
+        spawn_attempts=spawn_attempts,
+        sample_iterations=sample_iterations,
+        seed=seed,
+        timeout=timeout,
+        memory_mb=memory_mb,
+        carla_host=carla_host,
+        carla_port=carla_port,
+        require_sandbox=require_sandbox,
+    )
     many = len(scripts) > 1
     results: list[CheckResult] = []
     with WorkerPool(size=max(1, min(workers, len(scripts))), memory_mb=memory_mb) as pool:
+
         def run_one(script: Path, on_stage: Callable[[str], None] | None = None) -> CheckResult:
             per_script = options.model_copy(update={"png": _png_target(png, script, many)})
             return check(script, per_script, pool=pool, registry=registry, on_stage=on_stage)
@@ -173,6 +213,7 @@ def check_command(
                     result = run_one(script)
                 else:
                     with console.status(f"{script}: starting") as status:
+
                         def show(stage: str, status: Any = status, script: Path = script) -> None:
                             status.update(f"{script}: {STAGE_WORDS.get(stage, stage)}…")
 
@@ -189,8 +230,9 @@ def check_command(
     raise typer.Exit(0 if all(r.ok for r in results) else 1)
 
 
-maps_app = typer.Typer(help="Maps: what is available and what each one offers.",
-                       no_args_is_help=True)
+maps_app = typer.Typer(
+    help="Maps: what is available and what each one offers.", no_args_is_help=True
+)
 
 
 @maps_app.command("list")
@@ -208,23 +250,35 @@ def maps_list(
         table.add_column(column)
     for name in registry.names():
         entry = registry.entries[name]
-        table.add_row(name, entry.source, ", ".join(sorted(entry.features)) or "?",
-                      os.path.relpath(entry.path) if entry.path else "-")
+        table.add_row(
+            name,
+            entry.source,
+            ", ".join(sorted(entry.features)) or "?",
+            os.path.relpath(entry.path) if entry.path else "-",
+        )
     console.print(table)
 
 
 def blueprints_command(
-    category: Annotated[str | None, typer.Argument(
-        help="car, truck, motorcycle, bicycle, walker, busStop, ... (all if omitted)")] = None,
+    category: Annotated[
+        str | None,
+        typer.Argument(
+            help="car, truck, motorcycle, bicycle, walker, busStop, ... (all if omitted)"
+        ),
+    ] = None,
 ) -> None:
     """List the CARLA blueprints of the installed CARLA version, by category."""
     import scenic.simulators.carla.blueprints as table
 
-    categories = sorted(name.removesuffix("Models") for name in dir(table)
-                        if name.endswith("Models") and isinstance(getattr(table, name), list))
+    categories = sorted(
+        name.removesuffix("Models")
+        for name in dir(table)
+        if name.endswith("Models") and isinstance(getattr(table, name), list)
+    )
     if category is not None and category not in categories:
-        errors.print(f"[red]error:[/red] unknown category {category!r}; "
-                     f"choose from {', '.join(categories)}")
+        errors.print(
+            f"[red]error:[/red] unknown category {category!r}; choose from {', '.join(categories)}"
+        )
         raise typer.Exit(2)
     for name in [category] if category else categories:
         console.print(f"[bold]{name}[/bold]: " + ", ".join(getattr(table, f"{name}Models")))

@@ -76,7 +76,8 @@ def _deepest_frame_file(tb: TracebackType | None) -> str:
 
 _SCENIC2_OBJECT = re.compile(
     r"(?:^|=)\s*(?!new\b)([A-Z]\w*)\s+(?:at|on|in|with|following|ahead\s+of|behind|left\s+of|"
-    r"right\s+of|offset\s+by|facing|beyond|visible|contained\s+in)\b")
+    r"right\s+of|offset\s+by|facing|beyond|visible|contained\s+in)\b"
+)
 
 
 def looks_like_scenic2(code_line: str | None) -> bool:
@@ -84,33 +85,49 @@ def looks_like_scenic2(code_line: str | None) -> bool:
     return bool(code_line and _SCENIC2_OBJECT.search(code_line.split("#", 1)[0]))
 
 
-def hint_for(error_type: str, message: str, vocabulary: Iterable[str] = (),
-             code_line: str | None = None) -> str | None:
+def hint_for(
+    error_type: str, message: str, vocabulary: Iterable[str] = (), code_line: str | None = None
+) -> str | None:
     """A short, concrete suggestion for errors we recognise."""
-    if "forgot 'new'" in message or "forgot \"new\"" in message or (
-            error_type in ("ScenicParseError", "SyntaxError") and looks_like_scenic2(code_line)):
-        return ("Scenic 3 creates objects with `new`: write `x = new Car ...`, "
-                "not `x = Car ...` (Scenic 2 syntax).")
+    if (
+        "forgot 'new'" in message
+        or 'forgot "new"' in message
+        or (error_type in ("ScenicParseError", "SyntaxError") and looks_like_scenic2(code_line))
+    ):
+        return (
+            "Scenic 3 creates objects with `new`: write `x = new Car ...`, "
+            "not `x = Car ...` (Scenic 2 syntax)."
+        )
     name = _NAME_ERROR.search(message)
     if name:
         close = difflib.get_close_matches(name.group(1), list(vocabulary), n=3, cutoff=0.75)
         if close:
             return f"'{name.group(1)}' is not defined; did you mean {', '.join(close)}?"
-        return (f"'{name.group(1)}' is not defined: declare it (e.g. "
-                f"`param {name.group(1)} = ...` and read it via globalParameters) or use a "
-                "name the CARLA model provides.")
+        return (
+            f"'{name.group(1)}' is not defined: declare it (e.g. "
+            f"`param {name.group(1)} = ...` and read it via globalParameters) or use a "
+            "name the CARLA model provides."
+        )
     if "from inside guard or interrupt condition" in message:
-        return ("Scenic 3.1 cannot evaluate visibility (`can see`, withinDistanceToAnyObjs) "
-                "inside an interrupt condition; use withinDistanceToObjsInLane or a distance test.")
+        return (
+            "Scenic 3.1 cannot evaluate visibility (`can see`, withinDistanceToAnyObjs) "
+            "inside an interrupt condition; use withinDistanceToObjsInLane or a distance test."
+        )
     if "OfflineCarlaSimulation" in message or "carlaActor" in message:
-        return ("the script uses CARLA's own Python API (simulation().world, carlaActor, ...), "
-                "which only a real CARLA server provides: run with --simulator carla.")
+        return (
+            "the script uses CARLA's own Python API (simulation().world, carlaActor, ...), "
+            "which only a real CARLA server provides: run with --simulator carla."
+        )
     if error_type == "UnknownBlueprintError":
-        return ("use a blueprint of the installed CARLA version "
-                "(`arise blueprints` lists them), or leave the blueprint out for a random one.")
+        return (
+            "use a blueprint of the installed CARLA version "
+            "(`arise blueprints` lists them), or leave the blueprint out for a random one."
+        )
     if error_type == "SpecifierError":
-        return ("two specifiers conflict or one needs a property no other specifier gives; "
-                "give each property (position, heading, ...) once.")
+        return (
+            "two specifiers conflict or one needs a property no other specifier gives; "
+            "give each property (position, heading, ...) once."
+        )
     if error_type in ("IndentationError", "TabError"):
         return "fix the indentation of this block (4 spaces per level, no tabs)."
     if error_type == "MemoryError":
@@ -137,9 +154,13 @@ def from_exception(
     message = str(exc) or error_type
     line: int | None
     column: int | None
-    if hasattr(exc, "lineno") and isinstance(getattr(exc, "lineno", None), int) and (
-        getattr(exc, "filename", None) in (None, script_path, "<string>")
-        or str(getattr(exc, "filename", "")).endswith(Path(script_path).name)
+    if (
+        hasattr(exc, "lineno")
+        and isinstance(getattr(exc, "lineno", None), int)
+        and (
+            getattr(exc, "filename", None) in (None, script_path, "<string>")
+            or str(getattr(exc, "filename", "")).endswith(Path(script_path).name)
+        )
     ):
         line = exc.lineno
         offset = getattr(exc, "offset", None)
@@ -157,8 +178,10 @@ def from_exception(
             hint = "the map file could not be read; name a known town or pass --map-dir."
         elif isinstance(exc, ModuleNotFoundError) and info.model_line:
             line, column = info.model_line, None
-            hint = (f"world model '{info.model}' cannot be imported; use "
-                    "`model scenic.simulators.carla.model`.")
+            hint = (
+                f"world model '{info.model}' cannot be imported; use "
+                "`model scenic.simulators.carla.model`."
+            )
         elif info.ego_line and (line == 1 or "ego" in message.lower()):
             # Scenic reports errors of the `ego = new ...` statement at line 1.
             line, column = info.ego_line, None
@@ -206,8 +229,11 @@ def _creation_line(text: str, reason: str) -> int | None:
 def rejections_from_log(log: str, text: str) -> list[Rejection]:
     """Count the reasons Scenic printed for rejected samples (verbosity 2)."""
     reasons: Counter[str] = Counter()
-    for match in re.finditer(r"Rejected (?:sample|simulation) [\w.]+ (?:at time step \d+ )?"
-                             r"because(?: of)?:? (.+)", log):
+    for match in re.finditer(
+        r"Rejected (?:sample|simulation) [\w.]+ (?:at time step \d+ )?"
+        r"because(?: of)?:? (.+)",
+        log,
+    ):
         reasons[match.group(1).strip()] += 1
     lines = text.splitlines()
     found = []
@@ -215,29 +241,51 @@ def rejections_from_log(log: str, text: str) -> list[Rejection]:
         line_match = _REQUIREMENT_LINE.search(reason)
         line = int(line_match.group(1)) if line_match else _creation_line(text, reason)
         code = lines[line - 1].strip() if line and 0 < line <= len(lines) else None
-        found.append(Rejection(reason=reason, count=count, line=line,
-                               section=section_of_line(text, line), code=code))
+        found.append(
+            Rejection(
+                reason=reason,
+                count=count,
+                line=line,
+                section=section_of_line(text, line),
+                code=code,
+            )
+        )
     return found
 
 
-def rejection_diagnostic(stage: Stage, message: str, rejections: list[Rejection],
-                         text: str, attempts: int) -> Diagnostic:
+def rejection_diagnostic(
+    stage: Stage, message: str, rejections: list[Rejection], text: str, attempts: int
+) -> Diagnostic:
     """Name the requirement(s) that threw away the samples or simulations."""
     top = rejections[0] if rejections else None
     if top is not None and top.line is not None and "intersects" in top.reason:
-        hint = (f"objects overlap at spawn in {top.count} of {attempts} tries ({top.reason}); "
-                f"place the object created on line {top.line} farther from the others.")
+        hint = (
+            f"objects overlap at spawn in {top.count} of {attempts} tries ({top.reason}); "
+            f"place the object created on line {top.line} farther from the others."
+        )
     elif top is not None and top.line is not None:
-        hint = (f"the requirement on line {top.line} rejected {top.count} of {attempts} "
-                f"tries: `{top.code}`; loosen it or change the placement it constrains.")
+        hint = (
+            f"the requirement on line {top.line} rejected {top.count} of {attempts} "
+            f"tries: `{top.code}`; loosen it or change the placement it constrains."
+        )
     elif top is not None and "empty domain" in top.reason:
-        hint = ("a Uniform(...) chose from an empty list: nothing on this map matches the "
-                "filter (e.g. no such maneuver or lane); widen the filter or use another map.")
+        hint = (
+            "a Uniform(...) chose from an empty list: nothing on this map matches the "
+            "filter (e.g. no such maneuver or lane); widen the filter or use another map."
+        )
     elif top is not None:
-        hint = (f"most tries were rejected because {top.reason} ({top.count} of {attempts}); "
-                "check the placement of the objects involved (overlap, off-road, not in a lane).")
+        hint = (
+            f"most tries were rejected because {top.reason} ({top.count} of {attempts}); "
+            "check the placement of the objects involved (overlap, off-road, not in a lane)."
+        )
     else:
         hint = "no sample satisfied the requirements; loosen them."
     fields = locate(text, top.line if top else None)
-    return Diagnostic(stage=stage, error_type="RejectionException", message=message,
-                      hint=hint, rejections=rejections, **fields)  # type: ignore[arg-type]
+    return Diagnostic(
+        stage=stage,
+        error_type="RejectionException",
+        message=message,
+        hint=hint,
+        rejections=rejections,
+        **fields,
+    )  # type: ignore[arg-type]

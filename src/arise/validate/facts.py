@@ -21,8 +21,10 @@ def footprint(point: TracePoint, width: float, length: float) -> Polygon:
     side = (forward[1], -forward[0])
     hl, hw = length / 2, width / 2
     corners = [
-        (point.x + sx * hw * side[0] + fx * hl * forward[0],
-         point.y + sx * hw * side[1] + fx * hl * forward[1])
+        (
+            point.x + sx * hw * side[0] + fx * hl * forward[0],
+            point.y + sx * hw * side[1] + fx * hl * forward[1],
+        )
         for sx, fx in ((1, 1), (-1, 1), (-1, -1), (1, -1))
     ]
     return Polygon(corners)
@@ -40,8 +42,14 @@ def find_collisions(agents: list[AgentTrace], timestep: float) -> list[Collision
             if footprint(a, first.width, first.length).intersects(
                 footprint(b, second.width, second.length)
             ):
-                found.append(Collision(first=first.name, second=second.name, step=a.step,
-                                       time=round(a.step * timestep, 3)))
+                found.append(
+                    Collision(
+                        first=first.name,
+                        second=second.name,
+                        step=a.step,
+                        time=round(a.step * timestep, 3),
+                    )
+                )
                 break
     return found
 
@@ -60,7 +68,8 @@ def ego_pair_facts(agents: list[AgentTrace]) -> list[EgoPairFacts]:
         collided = False
         for a, b in zip(ego.trajectory, other.trajectory, strict=False):
             gap = footprint(a, ego.width, ego.length).distance(
-                footprint(b, other.width, other.length))
+                footprint(b, other.width, other.length)
+            )
             if gap <= 0:
                 collided = True
             if gap < best_distance:
@@ -75,11 +84,13 @@ def ego_pair_facts(agents: list[AgentTrace]) -> list[EgoPairFacts]:
                 ttc = gap / closing
                 if best_ttc is None or ttc < best_ttc:
                     best_ttc = ttc
-        facts.append(EgoPairFacts(
-            other=other.name,
-            min_distance=round(best_distance, 3) if best_distance != math.inf else -1.0,
-            min_distance_step=best_step,
-            min_ttc=round(best_ttc, 3) if best_ttc is not None else None,
-            collided=collided,
-        ))
+        facts.append(
+            EgoPairFacts(
+                other=other.name,
+                min_distance=round(best_distance, 3) if best_distance != math.inf else -1.0,
+                min_distance_step=best_step,
+                min_ttc=round(best_ttc, 3) if best_ttc is not None else None,
+                collided=collided,
+            )
+        )
     return facts

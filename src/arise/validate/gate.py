@@ -32,34 +32,158 @@ from arise.validate.script_info import KNOWN_MODELS
 
 # --- what a script may import, and which names of each module it may use ---------------
 _MATH_NAMES = None  # every public name of math is pure arithmetic
-_RANDOM_NAMES = frozenset({
-    "random", "uniform", "gauss", "normalvariate", "lognormvariate", "expovariate",
-    "vonmisesvariate", "gammavariate", "betavariate", "paretovariate", "weibullvariate",
-    "triangular", "choice", "choices", "sample", "shuffle", "randint", "randrange", "seed",
-    "Random",
-})
-_NUMPY_NAMES = frozenset({
-    "array", "asarray", "zeros", "ones", "full", "arange", "linspace", "eye", "pi", "e",
-    "inf", "nan", "sqrt", "exp", "log", "log10", "log2", "sin", "cos", "tan", "arcsin",
-    "arccos", "arctan", "arctan2", "hypot", "degrees", "radians", "deg2rad", "rad2deg",
-    "abs", "absolute", "sign", "floor", "ceil", "round", "rint", "clip", "minimum",
-    "maximum", "min", "max", "amin", "amax", "argmin", "argmax", "mean", "median", "std",
-    "var", "sum", "prod", "cumsum", "diff", "dot", "cross", "outer", "interp", "where",
-    "isclose", "allclose", "isnan", "isfinite", "sort", "argsort", "unique",
-    "concatenate", "stack", "vstack", "hstack", "reshape", "transpose", "mod", "fmod",
-    "power", "square", "cbrt", "percentile", "quantile", "all", "any", "count_nonzero",
-    "float64", "float32", "int64", "int32", "random", "linalg",
-})
-_NUMPY_RANDOM_NAMES = frozenset({
-    "rand", "randn", "random", "uniform", "normal", "choice", "randint", "seed",
-    "shuffle", "permutation", "exponential", "poisson", "triangular", "beta", "gamma",
-    "lognormal", "default_rng",
-})
+_RANDOM_NAMES = frozenset(
+    {
+        "random",
+        "uniform",
+        "gauss",
+        "normalvariate",
+        "lognormvariate",
+        "expovariate",
+        "vonmisesvariate",
+        "gammavariate",
+        "betavariate",
+        "paretovariate",
+        "weibullvariate",
+        "triangular",
+        "choice",
+        "choices",
+        "sample",
+        "shuffle",
+        "randint",
+        "randrange",
+        "seed",
+        "Random",
+    }
+)
+_NUMPY_NAMES = frozenset(
+    {
+        "array",
+        "asarray",
+        "zeros",
+        "ones",
+        "full",
+        "arange",
+        "linspace",
+        "eye",
+        "pi",
+        "e",
+        "inf",
+        "nan",
+        "sqrt",
+        "exp",
+        "log",
+        "log10",
+        "log2",
+        "sin",
+        "cos",
+        "tan",
+        "arcsin",
+        "arccos",
+        "arctan",
+        "arctan2",
+        "hypot",
+        "degrees",
+        "radians",
+        "deg2rad",
+        "rad2deg",
+        "abs",
+        "absolute",
+        "sign",
+        "floor",
+        "ceil",
+        "round",
+        "rint",
+        "clip",
+        "minimum",
+        "maximum",
+        "min",
+        "max",
+        "amin",
+        "amax",
+        "argmin",
+        "argmax",
+        "mean",
+        "median",
+        "std",
+        "var",
+        "sum",
+        "prod",
+        "cumsum",
+        "diff",
+        "dot",
+        "cross",
+        "outer",
+        "interp",
+        "where",
+        "isclose",
+        "allclose",
+        "isnan",
+        "isfinite",
+        "sort",
+        "argsort",
+        "unique",
+        "concatenate",
+        "stack",
+        "vstack",
+        "hstack",
+        "reshape",
+        "transpose",
+        "mod",
+        "fmod",
+        "power",
+        "square",
+        "cbrt",
+        "percentile",
+        "quantile",
+        "all",
+        "any",
+        "count_nonzero",
+        "float64",
+        "float32",
+        "int64",
+        "int32",
+        "random",
+        "linalg",
+    }
+)
+_NUMPY_RANDOM_NAMES = frozenset(
+    {
+        "rand",
+        "randn",
+        "random",
+        "uniform",
+        "normal",
+        "choice",
+        "randint",
+        "seed",
+        "shuffle",
+        "permutation",
+        "exponential",
+        "poisson",
+        "triangular",
+        "beta",
+        "gamma",
+        "lognormal",
+        "default_rng",
+    }
+)
 _NUMPY_LINALG_NAMES = frozenset({"norm", "det", "inv", "solve", "eig", "eigvals"})
-_ITERTOOLS_NAMES = frozenset({
-    "chain", "product", "permutations", "combinations", "cycle", "islice", "repeat",
-    "accumulate", "pairwise", "zip_longest", "count",
-})
+_ITERTOOLS_NAMES = frozenset(
+    {
+        "chain",
+        "product",
+        "permutations",
+        "combinations",
+        "cycle",
+        "islice",
+        "repeat",
+        "accumulate",
+        "pairwise",
+        "zip_longest",
+        "count",
+    }
+)
 _FUNCTOOLS_NAMES = frozenset({"partial", "reduce", "lru_cache", "cache"})
 _COLLECTIONS_NAMES = frozenset({"deque", "namedtuple", "OrderedDict", "defaultdict", "Counter"})
 
@@ -75,47 +199,183 @@ MODULE_NAMES: dict[str, frozenset[str] | None] = {
     "collections": _COLLECTIONS_NAMES,
 }
 #: Scenic modules a script may import from; their public names pass unless listed below.
-SCENIC_MODULE_PREFIXES = ("scenic.simulators.carla", "scenic.simulators.newtonian",
-                          "scenic.domains.driving", "scenic.core.vectors",
-                          "scenic.core.regions", "scenic.core.distributions")
+SCENIC_MODULE_PREFIXES = (
+    "scenic.simulators.carla",
+    "scenic.simulators.newtonian",
+    "scenic.domains.driving",
+    "scenic.core.vectors",
+    "scenic.core.regions",
+    "scenic.core.distributions",
+)
 STAR_IMPORTABLE = frozenset({"math", "random"})
 
 #: Scenic's documented non-rejecting accessors of road-network elements (roads.py says
 #: to use `_laneToLeft` where `laneToLeft` would reject the sample). Data, not internals.
-SCENIC_PRIVATE_ACCESSORS = frozenset({
-    "_laneToLeft", "_laneToRight", "_fasterLane", "_slowerLane", "_lane", "_laneSection",
-    "_laneGroup", "_road", "_intersection", "_crossing", "_element", "_sidewalk",
-    "_opposite",
-})
+SCENIC_PRIVATE_ACCESSORS = frozenset(
+    {
+        "_laneToLeft",
+        "_laneToRight",
+        "_fasterLane",
+        "_slowerLane",
+        "_lane",
+        "_laneSection",
+        "_laneGroup",
+        "_road",
+        "_intersection",
+        "_crossing",
+        "_element",
+        "_sidewalk",
+        "_opposite",
+    }
+)
 
 #: Names that lead to the interpreter, files, processes or the network: refused as bare
 #: names and as attributes of anything (Scenic's modules re-export some of them).
-DANGEROUS_NAMES = frozenset({
-    # modules
-    "os", "sys", "subprocess", "shutil", "socket", "ctypes", "ctypeslib", "importlib",
-    "builtins", "pickle", "marshal", "shelve", "dbm", "io", "pathlib", "tempfile", "glob",
-    "signal", "threading", "multiprocessing", "asyncio", "selectors", "select", "mmap",
-    "fcntl", "resource", "pty", "posix", "gc", "inspect", "code", "codeop", "runpy",
-    "pkgutil", "zipimport", "urllib", "http", "ftplib", "smtplib", "webbrowser",
-    "sqlite3", "zipfile", "tarfile", "gzip", "bz2", "lzma", "logging", "atexit",
-    "faulthandler", "sysconfig", "linecache", "types", "ast", "dis", "veneer", "translator",
-    "compiler", "syntax", "typing", "lib", "f2py", "distutils", "testing", "ma",
-    "scipy", "arise", "pygame", "matplotlib", "trimesh", "shapely", "attr",
-    "weakref", "warnings", "utils", "type_support",
-    # functions and attributes that open files, run programs or evaluate code
-    "open", "eval", "exec", "compile", "__import__", "globals", "locals", "vars",
-    "breakpoint", "input", "exit", "quit", "help", "memoryview", "system", "popen",
-    "spawn", "spawnv", "spawnl", "execv", "execve", "execl", "execlp", "fork", "forkpty",
-    "kill", "modules", "load", "loads", "save", "savez", "savez_compressed", "savetxt",
-    "loadtxt", "genfromtxt", "fromfile", "tofile", "dump", "dumps", "memmap",
-    "DataSource", "fromregex", "get_type_hints", "mro", "format_map", "gi_frame",
-    "gi_code", "cr_frame", "f_globals", "f_locals", "f_back", "f_builtins", "tb_frame",
-    "tb_next", "func_globals", "func_code", "im_func", "co_code", "getattribute",
-})
+DANGEROUS_NAMES = frozenset(
+    {
+        # modules
+        "os",
+        "sys",
+        "subprocess",
+        "shutil",
+        "socket",
+        "ctypes",
+        "ctypeslib",
+        "importlib",
+        "builtins",
+        "pickle",
+        "marshal",
+        "shelve",
+        "dbm",
+        "io",
+        "pathlib",
+        "tempfile",
+        "glob",
+        "signal",
+        "threading",
+        "multiprocessing",
+        "asyncio",
+        "selectors",
+        "select",
+        "mmap",
+        "fcntl",
+        "resource",
+        "pty",
+        "posix",
+        "gc",
+        "inspect",
+        "code",
+        "codeop",
+        "runpy",
+        "pkgutil",
+        "zipimport",
+        "urllib",
+        "http",
+        "ftplib",
+        "smtplib",
+        "webbrowser",
+        "sqlite3",
+        "zipfile",
+        "tarfile",
+        "gzip",
+        "bz2",
+        "lzma",
+        "logging",
+        "atexit",
+        "faulthandler",
+        "sysconfig",
+        "linecache",
+        "types",
+        "ast",
+        "dis",
+        "veneer",
+        "translator",
+        "compiler",
+        "syntax",
+        "typing",
+        "lib",
+        "f2py",
+        "distutils",
+        "testing",
+        "ma",
+        "scipy",
+        "arise",
+        "pygame",
+        "matplotlib",
+        "trimesh",
+        "shapely",
+        "attr",
+        "weakref",
+        "warnings",
+        "utils",
+        "type_support",
+        # functions and attributes that open files, run programs or evaluate code
+        "open",
+        "eval",
+        "exec",
+        "compile",
+        "__import__",
+        "globals",
+        "locals",
+        "vars",
+        "breakpoint",
+        "input",
+        "exit",
+        "quit",
+        "help",
+        "memoryview",
+        "system",
+        "popen",
+        "spawn",
+        "spawnv",
+        "spawnl",
+        "execv",
+        "execve",
+        "execl",
+        "execlp",
+        "fork",
+        "forkpty",
+        "kill",
+        "modules",
+        "load",
+        "loads",
+        "save",
+        "savez",
+        "savez_compressed",
+        "savetxt",
+        "loadtxt",
+        "genfromtxt",
+        "fromfile",
+        "tofile",
+        "dump",
+        "dumps",
+        "memmap",
+        "DataSource",
+        "fromregex",
+        "get_type_hints",
+        "mro",
+        "format_map",
+        "gi_frame",
+        "gi_code",
+        "cr_frame",
+        "f_globals",
+        "f_locals",
+        "f_back",
+        "f_builtins",
+        "tb_frame",
+        "tb_next",
+        "func_globals",
+        "func_code",
+        "im_func",
+        "co_code",
+        "getattribute",
+    }
+)
 #: Builtins refused as bare names only (as attributes they are ordinary data, e.g.
 #: `maneuver.type`): they build classes or list what an object hides.
-BARE_BUILTINS = frozenset({"object", "type", "super", "classmethod", "staticmethod",
-                           "property", "dir"})
+BARE_BUILTINS = frozenset(
+    {"object", "type", "super", "classmethod", "staticmethod", "property", "dir"}
+)
 ATTRIBUTE_BUILTINS = frozenset({"getattr", "setattr", "delattr", "hasattr"})
 
 
@@ -134,7 +394,8 @@ class Refusal:
 def module_allowed(name: str) -> bool:
     """May a script import this module?"""
     return name in MODULE_NAMES or any(
-        name == prefix or name.startswith(prefix + ".") for prefix in SCENIC_MODULE_PREFIXES)
+        name == prefix or name.startswith(prefix + ".") for prefix in SCENIC_MODULE_PREFIXES
+    )
 
 
 def _is_scenic(module: str) -> bool:
@@ -186,8 +447,11 @@ def _static_string(node: ast.AST) -> str | None:
         for value in node.values:
             if isinstance(value, ast.Constant) and isinstance(value.value, str):
                 parts.append(value.value)
-            elif (isinstance(value, ast.FormattedValue) and isinstance(value.value, ast.Name)
-                  and value.format_spec is None):
+            elif (
+                isinstance(value, ast.FormattedValue)
+                and isinstance(value.value, ast.Name)
+                and value.format_spec is None
+            ):
                 parts.append("{" + value.value.id + "}")
             else:
                 return None
@@ -233,8 +497,9 @@ class _Walker(ast.NodeVisitor):
         for alias in node.names:
             if alias.name == "*":
                 if module not in STAR_IMPORTABLE and not _is_scenic(module):
-                    self.refuse(node, f"'from {module} import *' is not allowed; "
-                                      "import the names you use")
+                    self.refuse(
+                        node, f"'from {module} import *' is not allowed; import the names you use"
+                    )
             elif f"{module}.{alias.name}" in MODULE_NAMES:
                 self.modules[alias.asname or alias.name] = f"{module}.{alias.name}"
             elif not _name_of_module_allowed(module, alias.name):
@@ -243,16 +508,22 @@ class _Walker(ast.NodeVisitor):
     # names and attributes ---------------------------------------------------------------
     def visit_Name(self, node: ast.Name) -> None:
         if node.id in ATTRIBUTE_BUILTINS and id(node) not in self.called:
-            self.refuse(node, f"'{node.id}' may only be called with a literal attribute name, "
-                              "not passed around as a value")
+            self.refuse(
+                node,
+                f"'{node.id}' may only be called with a literal attribute name, "
+                "not passed around as a value",
+            )
             return
         if node.id in self.modules or (node.id in self.bound and not node.id.startswith("_")):
             return
         if node.id.startswith("__"):
             self.refuse(node, f"name '{node.id}' is not allowed (interpreter internals)")
         elif node.id in DANGEROUS_NAMES or node.id in BARE_BUILTINS:
-            self.refuse(node, f"name '{node.id}' is not allowed (it reaches the interpreter, "
-                              "files, processes or the network)")
+            self.refuse(
+                node,
+                f"name '{node.id}' is not allowed (it reaches the interpreter, "
+                "files, processes or the network)",
+            )
 
     def _module_chain(self, node: ast.Attribute) -> tuple[str, str] | None:
         """(module, attribute) when `node` reads an attribute of an imported module."""
@@ -278,10 +549,12 @@ class _Walker(ast.NodeVisitor):
             self.refuse(node, reason)
         elif on_module is not None:
             module, name = on_module
-            if f"{module}.{name}" not in MODULE_NAMES and \
-                    not _name_of_module_allowed(module, name):
-                self.refuse(node, f"'{module}.{name}' is not allowed (scripts may use only "
-                                  f"the maths of '{module}')")
+            if f"{module}.{name}" not in MODULE_NAMES and not _name_of_module_allowed(module, name):
+                self.refuse(
+                    node,
+                    f"'{module}.{name}' is not allowed (scripts may use only "
+                    f"the maths of '{module}')",
+                )
         if node.attr in SCENIC_PRIVATE_ACCESSORS and on_module is not None:
             self.refuse(node, f"attribute '.{node.attr}' of a module is not allowed")
         self.generic_visit(node)
@@ -304,8 +577,7 @@ class _Walker(ast.NodeVisitor):
         if isinstance(func, ast.Attribute) and func.attr == "format":
             template = func.value
             if not (isinstance(template, ast.Constant) and isinstance(template.value, str)):
-                self.refuse(node, "'.format' is allowed only on a string literal; "
-                                  "use an f-string")
+                self.refuse(node, "'.format' is allowed only on a string literal; use an f-string")
             elif _format_fields_walk(template.value):
                 self.refuse(node, "format fields may not access attributes or items")
         if isinstance(func, ast.Name) and func.id == "localPath":
@@ -313,11 +585,11 @@ class _Walker(ast.NodeVisitor):
         self.generic_visit(node)
 
     def _check_path_argument(self, node: ast.Call) -> None:
-        value = _static_string(node.args[0]) if len(node.args) == 1 and not node.keywords \
-            else None
+        value = _static_string(node.args[0]) if len(node.args) == 1 and not node.keywords else None
         if value is None:
-            self.refuse(node, "localPath takes one literal map path, e.g. "
-                              "localPath(f'maps/{Town}.xodr')")
+            self.refuse(
+                node, "localPath takes one literal map path, e.g. localPath(f'maps/{Town}.xodr')"
+            )
             return
         problem = _path_problem(value)
         if problem:
@@ -329,8 +601,9 @@ class _Walker(ast.NodeVisitor):
             return
         for inner in ast.walk(annotation):
             if isinstance(inner, ast.Constant) and isinstance(inner.value, str):
-                self.refuse(inner, "string annotations are not allowed (they are evaluated "
-                                   "as code)")
+                self.refuse(
+                    inner, "string annotations are not allowed (they are evaluated as code)"
+                )
                 return
 
     def visit_AnnAssign(self, node: ast.AnnAssign) -> None:
@@ -354,8 +627,11 @@ class _Walker(ast.NodeVisitor):
         if kind == "Model":
             name = getattr(node, "name", "")
             if name not in KNOWN_MODELS:
-                self.refuse(node, f"model '{name}' is not a world model we know "
-                                  f"({', '.join(sorted(KNOWN_MODELS))})")
+                self.refuse(
+                    node,
+                    f"model '{name}' is not a world model we know "
+                    f"({', '.join(sorted(KNOWN_MODELS))})",
+                )
         elif kind == "Param":
             for element in getattr(node, "elts", []) or []:
                 if getattr(element, "identifier", None) == "map":
@@ -363,8 +639,11 @@ class _Walker(ast.NodeVisitor):
         super().generic_visit(node)
 
     def _check_map_param(self, node: ast.AST, value: ast.AST | None) -> None:
-        if isinstance(value, ast.Call) and isinstance(value.func, ast.Name) \
-                and value.func.id == "localPath":
+        if (
+            isinstance(value, ast.Call)
+            and isinstance(value.func, ast.Name)
+            and value.func.id == "localPath"
+        ):
             return  # checked as a call
         text = _static_string(value) if value is not None else None
         if text is None and isinstance(value, ast.Name):
@@ -409,16 +688,24 @@ def scan_tokens(text: str) -> list[Refusal]:
         if match:
             module = match.group(1) or match.group(2) or ""
             if module.startswith(".") or not module_allowed(module):
-                refusals.append(Refusal(f"import of module '{module}' is not allowed", number,
-                                        line.index(module) + 1 if module in line else 1))
+                refusals.append(
+                    Refusal(
+                        f"import of module '{module}' is not allowed",
+                        number,
+                        line.index(module) + 1 if module in line else 1,
+                    )
+                )
     tokens: list[tokenize.TokenInfo] = []
     try:
         for token in tokenize.generate_tokens(io.StringIO(text).readline):
             tokens.append(token)
     except (tokenize.TokenError, IndentationError, SyntaxError):
         pass  # keep the tokens read before the error
-    statements = {number for number, line in enumerate(text.splitlines(), start=1)
-                  if _IMPORT_LINE.match(line) or re.match(r"^\s*model\s", line)}
+    statements = {
+        number
+        for number, line in enumerate(text.splitlines(), start=1)
+        if _IMPORT_LINE.match(line) or re.match(r"^\s*model\s", line)
+    }
     for previous, token in zip([None, *tokens], tokens, strict=False):
         if token.type != tokenize.NAME or token.start[0] in statements:
             continue
@@ -426,7 +713,8 @@ def scan_tokens(text: str) -> list[Refusal]:
         where = (token.start[0], token.start[1] + 1)
         if after_dot and _bad_attribute(token.string):
             refusals.append(Refusal(str(_bad_attribute(token.string)), *where))
-        elif not after_dot and (token.string in DANGEROUS_NAMES | BARE_BUILTINS
-                                or token.string.startswith("__")):
+        elif not after_dot and (
+            token.string in DANGEROUS_NAMES | BARE_BUILTINS or token.string.startswith("__")
+        ):
             refusals.append(Refusal(f"name '{token.string}' is not allowed", *where))
     return sorted(refusals, key=lambda r: (r.line, r.column))

@@ -46,18 +46,31 @@ def prepare_map(xodr: Path) -> None:
         try:
             copy = workspace / xodr.name
             shutil.copyfile(xodr, copy)
-            env = {key: value for key, value in os.environ.items()
-                   if key in ("PATH", "LANG", "PYTHONPATH", "VIRTUAL_ENV", "ARISE_CACHE_DIR")}
-            env.update(HOME=str(workspace), TMPDIR=str(workspace), PYTHONDONTWRITEBYTECODE="1",
-                       ARISE_CACHE_DIR=str(cache_dir()))
+            env = {
+                key: value
+                for key, value in os.environ.items()
+                if key in ("PATH", "LANG", "PYTHONPATH", "VIRTUAL_ENV", "ARISE_CACHE_DIR")
+            }
+            env.update(
+                HOME=str(workspace),
+                TMPDIR=str(workspace),
+                PYTHONDONTWRITEBYTECODE="1",
+                ARISE_CACHE_DIR=str(cache_dir()),
+            )
             try:
                 done = subprocess.run(
                     [sys.executable, "-m", "arise.validate.map_cache", str(copy)],
-                    cwd=workspace, env=env, capture_output=True, text=True,
-                    timeout=PREPARE_TIMEOUT, start_new_session=True)
+                    cwd=workspace,
+                    env=env,
+                    capture_output=True,
+                    text=True,
+                    timeout=PREPARE_TIMEOUT,
+                    start_new_session=True,
+                )
             except subprocess.TimeoutExpired:
-                raise MapPreparationError(f"parsing map {xodr.stem} took longer than "
-                                          f"{PREPARE_TIMEOUT:g} s") from None
+                raise MapPreparationError(
+                    f"parsing map {xodr.stem} took longer than {PREPARE_TIMEOUT:g} s"
+                ) from None
             if done.returncode != 0 or not cache_file(copy).exists():
                 reason = (done.stderr.strip().splitlines() or ["no output"])[-1]
                 raise MapPreparationError(f"map {xodr.stem} could not be parsed: {reason}")

@@ -36,8 +36,19 @@ KILL_GRACE = 3.0  # seconds after the time limit before the process group is kil
 SCRATCH_QUOTA_BYTES = 256 * 1024 * 1024  # a script that writes more is stopped
 MESSAGE_LIMIT_BYTES = 64 * 1024 * 1024  # one protocol line; a longer one is a flood
 # Variables a worker inherits; everything else (API keys above all) stays behind.
-_PASSED_ENV = ("PATH", "LANG", "LC_ALL", "LC_CTYPE", "TZ", "PYTHONPATH", "PYTHONHASHSEED",
-               "VIRTUAL_ENV", "ARISE_CACHE_DIR", "ARISE_MAP_DIR", "ARISE_WORKER_STDERR")
+_PASSED_ENV = (
+    "PATH",
+    "LANG",
+    "LC_ALL",
+    "LC_CTYPE",
+    "TZ",
+    "PYTHONPATH",
+    "PYTHONHASHSEED",
+    "VIRTUAL_ENV",
+    "ARISE_CACHE_DIR",
+    "ARISE_MAP_DIR",
+    "ARISE_WORKER_STDERR",
+)
 
 StageCallback = Callable[[str], None]
 
@@ -55,18 +66,27 @@ class WorkerStartError(AriseError):
     """A worker could not start, or could not be confined as required."""
 
 
-def _worker_env(scratch: Path, memory_mb: int, connect_ports: tuple[int, ...],
-                confine: bool) -> dict[str, str]:
+def _worker_env(
+    scratch: Path, memory_mb: int, connect_ports: tuple[int, ...], confine: bool
+) -> dict[str, str]:
     env = {key: os.environ[key] for key in _PASSED_ENV if key in os.environ}
-    env.update(HOME=str(scratch), TMPDIR=str(scratch), ARISE_WORKER_SCRATCH=str(scratch),
-               ARISE_CACHE_DIR=str(cache_dir()),
-               ARISE_WORKER_MEMORY_MB=str(memory_mb),
-               ARISE_WORKER_SCRATCH_BYTES=str(SCRATCH_QUOTA_BYTES),
-               ARISE_WORKER_CONNECT_PORTS=",".join(str(p) for p in connect_ports),
-               ARISE_WORKER_CONFINE="1" if confine else "0",
-               MPLCONFIGDIR=str(cache_dir() / "matplotlib"), MPLBACKEND="Agg",
-               PYGAME_HIDE_SUPPORT_PROMPT="hide", SDL_VIDEODRIVER="dummy",
-               OMP_NUM_THREADS="1", OPENBLAS_NUM_THREADS="1", PYTHONDONTWRITEBYTECODE="1")
+    env.update(
+        HOME=str(scratch),
+        TMPDIR=str(scratch),
+        ARISE_WORKER_SCRATCH=str(scratch),
+        ARISE_CACHE_DIR=str(cache_dir()),
+        ARISE_WORKER_MEMORY_MB=str(memory_mb),
+        ARISE_WORKER_SCRATCH_BYTES=str(SCRATCH_QUOTA_BYTES),
+        ARISE_WORKER_CONNECT_PORTS=",".join(str(p) for p in connect_ports),
+        ARISE_WORKER_CONFINE="1" if confine else "0",
+        MPLCONFIGDIR=str(cache_dir() / "matplotlib"),
+        MPLBACKEND="Agg",
+        PYGAME_HIDE_SUPPORT_PROMPT="hide",
+        SDL_VIDEODRIVER="dummy",
+        OMP_NUM_THREADS="1",
+        OPENBLAS_NUM_THREADS="1",
+        PYTHONDONTWRITEBYTECODE="1",
+    )
     return env
 
 
@@ -82,14 +102,16 @@ def _folder_bytes(folder: Path) -> int:
 class Worker:
     """One confined child process running `arise.validate.worker`."""
 
-    def __init__(self, memory_mb: int, connect_ports: tuple[int, ...] = (),
-                 confine: bool = True):
+    def __init__(self, memory_mb: int, connect_ports: tuple[int, ...] = (), confine: bool = True):
         self.connect_ports = connect_ports
         self.scratch = Path(tempfile.mkdtemp(prefix="arise-worker-"))
         self.process = subprocess.Popen(
             [sys.executable, "-m", "arise.validate.worker"],
-            stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=subprocess.DEVNULL,
-            start_new_session=True, cwd=self.scratch,
+            stdin=subprocess.PIPE,
+            stdout=subprocess.PIPE,
+            stderr=subprocess.DEVNULL,
+            start_new_session=True,
+            cwd=self.scratch,
             env=_worker_env(self.scratch, memory_mb, connect_ports, confine),
         )
         self.task_limit = limit_tasks(self.process.pid) if confine else None
@@ -101,16 +123,21 @@ class Worker:
             message = None
         if message is None or message.get("event") != "ready":
             self.kill()
-            raise WorkerStartError("a validator worker did not start; run "
-                                   "`python -m arise.validate.worker` to see why")
+            raise WorkerStartError(
+                "a validator worker did not start; run `python -m arise.validate.worker` to see why"
+            )
         # Said before any script ran, so a script cannot forge it.
-        self.sandbox = SandboxReport.model_validate(message.get("sandbox") or {
-            "missing": ["landlock-fs", "landlock-net", "landlock-scope", "seccomp", "rlimits"]})
+        self.sandbox = SandboxReport.model_validate(
+            message.get("sandbox")
+            or {"missing": ["landlock-fs", "landlock-net", "landlock-scope", "seccomp", "rlimits"]}
+        )
         if confine:
             self.sandbox.notes.append(
-                self.task_limit.describe() if self.task_limit else
-                f"tasks: RLIMIT_NPROC in the worker's user namespace (not for root), and the "
-                f"parent stops a worker with more than {MAX_TASKS} tasks")
+                self.task_limit.describe()
+                if self.task_limit
+                else f"tasks: RLIMIT_NPROC in the worker's user namespace (not for root), and the "
+                f"parent stops a worker with more than {MAX_TASKS} tasks"
+            )
 
     @property
     def alive(self) -> bool:
@@ -130,13 +157,20 @@ class Worker:
                 return None
             ready, _, _ = select.select([fd], [], [], min(remaining, 0.5))
             if count_tasks(self.process.pid) > MAX_TASKS:
-                raise WorkerDied(self._refused(
-                    "ProcessLimitExceeded", f"the script started more than {MAX_TASKS} "
-                    "threads or processes"))
+                raise WorkerDied(
+                    self._refused(
+                        "ProcessLimitExceeded",
+                        f"the script started more than {MAX_TASKS} threads or processes",
+                    )
+                )
             if _folder_bytes(self.scratch) > SCRATCH_QUOTA_BYTES:
-                raise WorkerDied(self._refused(
-                    "DiskQuotaExceeded", f"the script wrote more than "
-                    f"{SCRATCH_QUOTA_BYTES // 2**20} MB into its scratch folder"))
+                raise WorkerDied(
+                    self._refused(
+                        "DiskQuotaExceeded",
+                        f"the script wrote more than "
+                        f"{SCRATCH_QUOTA_BYTES // 2**20} MB into its scratch folder",
+                    )
+                )
             if not ready:
                 continue
             chunk = os.read(fd, 65536)
@@ -144,27 +178,36 @@ class Worker:
                 return None
             self._buffer += chunk
             if len(self._buffer) > MESSAGE_LIMIT_BYTES:
-                raise WorkerDied(self._refused(
-                    "ProtocolViolation", "the worker flooded its result channel"))
+                raise WorkerDied(
+                    self._refused("ProtocolViolation", "the worker flooded its result channel")
+                )
         line, self._buffer = self._buffer.split(b"\n", 1)
         try:
             message = json.loads(line)
         except ValueError:
-            raise WorkerDied(self._refused(
-                "ProtocolViolation", "the worker wrote something other than its "
-                "protocol on its result channel")) from None
+            raise WorkerDied(
+                self._refused(
+                    "ProtocolViolation",
+                    "the worker wrote something other than its protocol on its result channel",
+                )
+            ) from None
         if not isinstance(message, dict):
             raise WorkerDied(self._refused("ProtocolViolation", "malformed worker message"))
         return message
 
     def _refused(self, error_type: str, message: str) -> Diagnostic:
         self.kill()
-        return Diagnostic(stage=Stage.SIMULATE, error_type=error_type, message=message,
-                          hint="the script did something a scenario never needs; the "
-                               "worker was stopped and replaced.")
+        return Diagnostic(
+            stage=Stage.SIMULATE,
+            error_type=error_type,
+            message=message,
+            hint="the script did something a scenario never needs; the "
+            "worker was stopped and replaced.",
+        )
 
-    def run(self, request: dict[str, Any], timeout: float,
-            on_stage: StageCallback | None = None) -> dict[str, Any]:
+    def run(
+        self, request: dict[str, Any], timeout: float, on_stage: StageCallback | None = None
+    ) -> dict[str, Any]:
         """Send one check; return the worker's result dict or raise WorkerDied."""
         assert self.process.stdin is not None
         stage = Stage.GATE.value
@@ -177,8 +220,9 @@ class Worker:
         while True:
             message = self._read_message(deadline)
             if message is None:  # the deadline passed, or the worker closed its channel
-                raise WorkerDied(self._death(stage, timeout,
-                                             timed_out=time.monotonic() >= deadline))
+                raise WorkerDied(
+                    self._death(stage, timeout, timed_out=time.monotonic() >= deadline)
+                )
             if message.get("event") == "stage":
                 stage = message["stage"]
                 if on_stage:
@@ -196,27 +240,42 @@ class Worker:
         self.kill()
         code = self.process.returncode
         if timed_out:
-            return Diagnostic(stage=Stage(stage), error_type="Timeout",
-                              message=f"the check did not finish within {timeout:g} s "
-                                      f"(killed in the {stage} stage)",
-                              hint="an endless loop or a very slow computation in the "
-                                   "script; make loops `wait`, or raise --timeout.")
+            return Diagnostic(
+                stage=Stage(stage),
+                error_type="Timeout",
+                message=f"the check did not finish within {timeout:g} s "
+                f"(killed in the {stage} stage)",
+                hint="an endless loop or a very slow computation in the "
+                "script; make loops `wait`, or raise --timeout.",
+            )
         how = f"signal {-code}" if code is not None and code < 0 else f"exit code {code}"
         memory = code is not None and code in (-signal.SIGKILL, -signal.SIGSEGV)
-        return Diagnostic(stage=Stage(stage), error_type="WorkerCrashed",
-                          message=f"the validator process died in the {stage} stage ({how})",
-                          hint=("the script probably exhausted memory" if memory else
-                                "the script crashed the interpreter"))
+        return Diagnostic(
+            stage=Stage(stage),
+            error_type="WorkerCrashed",
+            message=f"the validator process died in the {stage} stage ({how})",
+            hint=(
+                "the script probably exhausted memory"
+                if memory
+                else "the script crashed the interpreter"
+            ),
+        )
 
     def _child_death(self, stage: str, code: int) -> Diagnostic:
         """The child that ran the script died without a result (the server is fine)."""
         how = f"signal {-code}" if code < 0 else f"exit code {code}"
         memory = code in (-signal.SIGKILL, -signal.SIGSEGV)
-        return Diagnostic(stage=Stage(stage), error_type="WorkerCrashed",
-                          message=f"the process running the script died in the {stage} "
-                                  f"stage ({how}) without a result",
-                          hint=("the script probably exhausted memory" if memory else
-                                "the script ended its own process or flooded its channel"))
+        return Diagnostic(
+            stage=Stage(stage),
+            error_type="WorkerCrashed",
+            message=f"the process running the script died in the {stage} "
+            f"stage ({how}) without a result",
+            hint=(
+                "the script probably exhausted memory"
+                if memory
+                else "the script ended its own process or flooded its channel"
+            ),
+        )
 
     def kill(self) -> None:
         if self.process.poll() is None:
@@ -241,8 +300,15 @@ class WorkerPool:
     result then says that no confinement was active, and `require_sandbox` refuses it.
     """
 
-    def __init__(self, size: int = 1, memory_mb: int = 1536, recycle_after: int = 50, *,
-                 require_sandbox: bool = False, confine: bool = True):
+    def __init__(
+        self,
+        size: int = 1,
+        memory_mb: int = 1536,
+        recycle_after: int = 50,
+        *,
+        require_sandbox: bool = False,
+        confine: bool = True,
+    ):
         self.size = max(1, size)
         self.memory_mb = memory_mb
         self.recycle_after = recycle_after
@@ -282,8 +348,12 @@ class WorkerPool:
         return worker
 
     def _give_back(self, worker: Worker, healthy: bool) -> None:
-        if healthy and worker.alive and worker.checks_done < self.recycle_after \
-                and not self._closed:
+        if (
+            healthy
+            and worker.alive
+            and worker.checks_done < self.recycle_after
+            and not self._closed
+        ):
             self._idle.put(worker)
             return
         worker.kill()
@@ -302,8 +372,9 @@ class WorkerPool:
         self._give_back(worker, healthy=True)
         return worker.sandbox
 
-    def run(self, request: dict[str, Any], timeout: float,
-            on_stage: StageCallback | None = None) -> dict[str, Any]:
+    def run(
+        self, request: dict[str, Any], timeout: float, on_stage: StageCallback | None = None
+    ) -> dict[str, Any]:
         """Run one check request; the result dict carries the worker's `sandbox` report.
 
         Raises WorkerDied (with a diagnostic) when the worker had to be killed, and
@@ -352,6 +423,9 @@ class SandboxRequired(AriseError):
     """Confinement was required (`--require-sandbox`) but a mechanism is missing."""
 
     def __init__(self, sandbox: SandboxReport):
-        super().__init__("refusing to run the script: confinement is incomplete (missing: "
-                         + ", ".join(m.value for m in sandbox.missing) + ")")
+        super().__init__(
+            "refusing to run the script: confinement is incomplete (missing: "
+            + ", ".join(m.value for m in sandbox.missing)
+            + ")"
+        )
         self.sandbox = sandbox

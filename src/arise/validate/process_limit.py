@@ -18,8 +18,10 @@ import psutil
 
 MAX_TASKS = 256
 
-_HIERARCHIES = (Path("/sys/fs/cgroup/pids"),  # cgroup v1
-                Path("/sys/fs/cgroup"))  # cgroup v2, when pids is enabled below the root
+_HIERARCHIES = (
+    Path("/sys/fs/cgroup/pids"),  # cgroup v1
+    Path("/sys/fs/cgroup"),
+)  # cgroup v2, when pids is enabled below the root
 
 
 @dataclass(frozen=True)

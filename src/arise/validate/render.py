@@ -9,8 +9,13 @@ from typing import Any
 from arise.validate.facts import footprint
 from arise.validate.types import AgentTrace, Collision
 
-_COLORS = {"ego": "#d62728", "Pedestrian": "#2ca02c", "Bicycle": "#9467bd",
-           "Motorcycle": "#8c564b", "Truck": "#ff7f0e"}
+_COLORS = {
+    "ego": "#d62728",
+    "Pedestrian": "#2ca02c",
+    "Bicycle": "#9467bd",
+    "Motorcycle": "#8c564b",
+    "Truck": "#ff7f0e",
+}
 
 
 def _draw_region(ax: Any, geometry: Any, **style: Any) -> None:
@@ -22,8 +27,13 @@ def _draw_region(ax: Any, geometry: Any, **style: Any) -> None:
         ax.fill(x, y, **style)
 
 
-def draw_scene(network: Any, agents: list[AgentTrace], path: str, title: str = "",
-               collisions: list[Collision] | None = None) -> str:
+def draw_scene(
+    network: Any,
+    agents: list[AgentTrace],
+    path: str,
+    title: str = "",
+    collisions: list[Collision] | None = None,
+) -> str:
     """Write a PNG of the road network around the agents, with their paths; atomically."""
     import matplotlib
 
@@ -38,10 +48,12 @@ def draw_scene(network: Any, agents: list[AgentTrace], path: str, title: str = "
 
     fig, ax = plt.subplots(figsize=(8, 8), dpi=100)
     if network is not None:
-        for region, color in ((network.shoulderRegion, "#dddddd"),
-                              (network.sidewalkRegion, "#c6dbef"),
-                              (network.drivableRegion, "#bdbdbd"),
-                              (network.intersectionRegion, "#a8a8a8")):
+        for region, color in (
+            (network.shoulderRegion, "#dddddd"),
+            (network.sidewalkRegion, "#c6dbef"),
+            (network.drivableRegion, "#bdbdbd"),
+            (network.intersectionRegion, "#a8a8a8"),
+        ):
             polygons = getattr(region, "polygons", None)
             if polygons is not None:
                 _draw_region(ax, polygons.intersection(window), color=color, linewidth=0)
@@ -64,15 +76,22 @@ def draw_scene(network: Any, agents: list[AgentTrace], path: str, title: str = "
         ex, ey = end.exterior.xy
         ax.plot(ex, ey, color=color, linewidth=1)
         first = agent.trajectory[0]
-        ax.annotate(agent.name, (first.x, first.y), fontsize=8,
-                    xytext=(4, 4), textcoords="offset points")
+        ax.annotate(
+            agent.name, (first.x, first.y), fontsize=8, xytext=(4, 4), textcoords="offset points"
+        )
     by_name = {agent.name: agent for agent in agents}
     for collision in collisions or []:
         hit = by_name.get(collision.first)
         if hit is not None and collision.step < len(hit.trajectory):
             point = hit.trajectory[collision.step]
-            ax.plot(point.x, point.y, marker="X", color="black", markersize=12,
-                    label=f"contact {collision.first}-{collision.second} at {collision.time:g}s")
+            ax.plot(
+                point.x,
+                point.y,
+                marker="X",
+                color="black",
+                markersize=12,
+                label=f"contact {collision.first}-{collision.second} at {collision.time:g}s",
+            )
     if agents:
         ax.legend(loc="upper right", fontsize=7, framealpha=0.8)
     ax.set_xlim(window.bounds[0], window.bounds[2])

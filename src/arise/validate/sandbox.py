@@ -69,15 +69,25 @@ _MS_REC, _MS_PRIVATE = 0x4000, 0x40000
 NAMESPACE_PROCESS_LIMIT = 256  # tasks (threads count) a worker may have in its namespace
 
 READ_ONLY = _FS_READ_FILE | _FS_READ_DIR
-SCRATCH = (READ_ONLY | _FS_WRITE_FILE | _FS_TRUNCATE | _FS_REMOVE_FILE | _FS_REMOVE_DIR
-           | _FS_MAKE_REG | _FS_MAKE_DIR | _FS_REFER)
+SCRATCH = (
+    READ_ONLY
+    | _FS_WRITE_FILE
+    | _FS_TRUNCATE
+    | _FS_REMOVE_FILE
+    | _FS_REMOVE_DIR
+    | _FS_MAKE_REG
+    | _FS_MAKE_DIR
+    | _FS_REFER
+)
 DEVICE = _FS_READ_FILE | _FS_WRITE_FILE
 
 
 class _RulesetAttr(ctypes.Structure):
-    _fields_ = [("handled_access_fs", ctypes.c_uint64),
-                ("handled_access_net", ctypes.c_uint64),
-                ("scoped", ctypes.c_uint64)]
+    _fields_ = [
+        ("handled_access_fs", ctypes.c_uint64),
+        ("handled_access_net", ctypes.c_uint64),
+        ("scoped", ctypes.c_uint64),
+    ]
 
 
 class _PathBeneathAttr(ctypes.Structure):
@@ -92,29 +102,86 @@ class _NetPortAttr(ctypes.Structure):
 # --- seccomp: what a script never needs ---------------------------------------------------
 _DENIED_SYSCALLS = (
     # programs (new processes: see _NEW_PROCESSES)
-    "execve", "execveat",
+    "execve",
+    "execveat",
     # other processes' memory and descriptors
-    "ptrace", "process_vm_readv", "process_vm_writev", "pidfd_getfd", "kcmp",
+    "ptrace",
+    "process_vm_readv",
+    "process_vm_writev",
+    "pidfd_getfd",
+    "kcmp",
     # networking (offline: no sockets at all; CARLA mode re-allows TCP below)
     "socketpair",
     # mounts, namespaces, roots
-    "mount", "umount2", "pivot_root", "chroot", "unshare", "setns", "move_mount",
-    "open_tree", "fsopen", "fsmount", "fsconfig", "fspick", "mount_setattr",
+    "mount",
+    "umount2",
+    "pivot_root",
+    "chroot",
+    "unshare",
+    "setns",
+    "move_mount",
+    "open_tree",
+    "fsopen",
+    "fsmount",
+    "fsconfig",
+    "fspick",
+    "mount_setattr",
     # limits may only shrink
     "setrlimit",
     # metadata Landlock does not cover: modes, owners, extended attributes
-    "chmod", "fchmod", "fchmodat", "fchmodat2", "chown", "fchown", "lchown", "fchownat",
-    "setxattr", "lsetxattr", "fsetxattr", "removexattr", "lremovexattr", "fremovexattr",
-    "mknod", "mknodat", "open_by_handle_at", "name_to_handle_at",
+    "chmod",
+    "fchmod",
+    "fchmodat",
+    "fchmodat2",
+    "chown",
+    "fchown",
+    "lchown",
+    "fchownat",
+    "setxattr",
+    "lsetxattr",
+    "fsetxattr",
+    "removexattr",
+    "lremovexattr",
+    "fremovexattr",
+    "mknod",
+    "mknodat",
+    "open_by_handle_at",
+    "name_to_handle_at",
     # the kernel itself
-    "bpf", "perf_event_open", "keyctl", "add_key", "request_key", "init_module",
-    "finit_module", "delete_module", "kexec_load", "kexec_file_load", "reboot", "swapon",
-    "swapoff", "syslog", "acct", "quotactl", "iopl", "ioperm", "userfaultfd",
-    "io_uring_setup", "io_uring_enter", "io_uring_register", "fanotify_init",
-    "settimeofday", "clock_settime", "adjtimex", "sethostname", "setdomainname",
-    "personality", "lookup_dcookie", "vhangup",
+    "bpf",
+    "perf_event_open",
+    "keyctl",
+    "add_key",
+    "request_key",
+    "init_module",
+    "finit_module",
+    "delete_module",
+    "kexec_load",
+    "kexec_file_load",
+    "reboot",
+    "swapon",
+    "swapoff",
+    "syslog",
+    "acct",
+    "quotactl",
+    "iopl",
+    "ioperm",
+    "userfaultfd",
+    "io_uring_setup",
+    "io_uring_enter",
+    "io_uring_register",
+    "fanotify_init",
+    "settimeofday",
+    "clock_settime",
+    "adjtimex",
+    "sethostname",
+    "setdomainname",
+    "personality",
+    "lookup_dcookie",
+    "vhangup",
     # memory outside the address-space limit
-    "memfd_create", "memfd_secret",
+    "memfd_create",
+    "memfd_secret",
 )
 _NEW_PROCESSES = ("fork", "vfork")  # and clone without CLONE_THREAD
 _CLONE_THREAD = 0x00010000
@@ -128,8 +195,12 @@ class ConfinementPolicy:
 
     read_only: tuple[Path, ...]
     scratch: Path
-    devices: tuple[Path, ...] = (Path("/dev/null"), Path("/dev/zero"), Path("/dev/urandom"),
-                                 Path("/dev/random"))
+    devices: tuple[Path, ...] = (
+        Path("/dev/null"),
+        Path("/dev/zero"),
+        Path("/dev/urandom"),
+        Path("/dev/random"),
+    )
     # TCP ports the worker may connect to (the CARLA server's); empty: no network at all.
     connect_ports: tuple[int, ...] = ()
     # A fork server (the validation worker) may fork the children that run scripts; each
@@ -144,8 +215,13 @@ class ConfinementPolicy:
     notes: list[str] = field(default_factory=list)
 
 
-def python_policy(scratch: Path, *, memory_mb: int = 0, connect_ports: tuple[int, ...] = (),
-                  read_also: tuple[Path, ...] = ()) -> ConfinementPolicy:
+def python_policy(
+    scratch: Path,
+    *,
+    memory_mb: int = 0,
+    connect_ports: tuple[int, ...] = (),
+    read_also: tuple[Path, ...] = (),
+) -> ConfinementPolicy:
     """The policy for a Python process of ours: read the interpreter, the installed
     packages, arise itself and the map cache; write only `scratch`."""
     import arise
@@ -153,9 +229,17 @@ def python_policy(scratch: Path, *, memory_mb: int = 0, connect_ports: tuple[int
 
     readable = {Path(p) for p in (sys.prefix, sys.base_prefix, sys.exec_prefix)}
     readable |= {Path(p) for p in sys.path if p and Path(p).is_dir()}
-    readable |= {Path(arise.__file__).parents[1], cache_dir() / "maps",
-                 cache_dir() / "matplotlib", Path("/usr"), Path("/lib"), Path("/lib64"),
-                 Path("/etc/ld.so.cache"), Path("/etc/localtime"), *read_also}
+    readable |= {
+        Path(arise.__file__).parents[1],
+        cache_dir() / "maps",
+        cache_dir() / "matplotlib",
+        Path("/usr"),
+        Path("/lib"),
+        Path("/lib64"),
+        Path("/etc/ld.so.cache"),
+        Path("/etc/localtime"),
+        *read_also,
+    }
     if connect_ports:  # name resolution for the CARLA host
         readable |= {Path("/etc/hosts"), Path("/etc/nsswitch.conf"), Path("/etc/gai.conf")}
     readable = {p.resolve() for p in readable if p.exists()} - {scratch.resolve()}
@@ -164,8 +248,12 @@ def python_policy(scratch: Path, *, memory_mb: int = 0, connect_ports: tuple[int
         import psutil
 
         memory = psutil.Process().memory_info().vms + memory_mb * 1024 * 1024
-    return ConfinementPolicy(read_only=tuple(sorted(readable)), scratch=scratch,
-                             connect_ports=connect_ports, memory_bytes=memory)
+    return ConfinementPolicy(
+        read_only=tuple(sorted(readable)),
+        scratch=scratch,
+        connect_ports=connect_ports,
+        memory_bytes=memory,
+    )
 
 
 def enter_namespaces(scratch: Path, scratch_bytes: int, network: bool) -> str | None:
@@ -187,8 +275,11 @@ def enter_namespaces(scratch: Path, scratch_bytes: int, network: bool) -> str | 
     if libc.unshare(flags) != 0:
         return f"unshare: {os.strerror(ctypes.get_errno())} (user namespaces disabled?)"
     try:
-        for name, text in (("setgroups", "deny"), ("uid_map", f"{uid} {uid} 1"),
-                           ("gid_map", f"{gid} {gid} 1")):
+        for name, text in (
+            ("setgroups", "deny"),
+            ("uid_map", f"{uid} {uid} 1"),
+            ("gid_map", f"{gid} {gid} 1"),
+        ):
             with open(f"/proc/self/{name}", "w") as handle:
                 handle.write(text)
     except OSError as error:
@@ -196,8 +287,12 @@ def enter_namespaces(scratch: Path, scratch_bytes: int, network: bool) -> str | 
     if libc.mount(b"none", b"/", None, _MS_REC | _MS_PRIVATE, None) != 0:
         return f"private mounts: {os.strerror(ctypes.get_errno())}"
     options = f"size={scratch_bytes},mode=0700".encode()
-    if libc.mount(b"tmpfs", str(scratch).encode(), b"tmpfs", _MS_NOSUID | _MS_NODEV | _MS_NOEXEC,
-                  options) != 0:
+    if (
+        libc.mount(
+            b"tmpfs", str(scratch).encode(), b"tmpfs", _MS_NOSUID | _MS_NODEV | _MS_NOEXEC, options
+        )
+        != 0
+    ):
         return f"tmpfs scratch: {os.strerror(ctypes.get_errno())}"
     return None
 
@@ -223,8 +318,9 @@ def landlock_abi() -> int:
         return 0
     libc = _libc()
     libc.syscall.restype = ctypes.c_long
-    version = libc.syscall(ctypes.c_long(number), None, ctypes.c_size_t(0),
-                           ctypes.c_uint32(_CREATE_RULESET_VERSION))
+    version = libc.syscall(
+        ctypes.c_long(number), None, ctypes.c_size_t(0), ctypes.c_uint32(_CREATE_RULESET_VERSION)
+    )
     return max(0, int(version))
 
 
@@ -265,12 +361,18 @@ def _apply_landlock(policy: ConfinementPolicy, abi: int) -> list[Mechanism]:
     libc = _libc()
     libc.syscall.restype = ctypes.c_long
     handled_fs = _fs_rights(abi)
-    attr = _RulesetAttr(handled_access_fs=handled_fs,
-                        handled_access_net=(_NET_BIND_TCP | _NET_CONNECT_TCP) if abi >= 4 else 0,
-                        scoped=(_SCOPE_ABSTRACT_UNIX_SOCKET | _SCOPE_SIGNAL) if abi >= 6 else 0)
+    attr = _RulesetAttr(
+        handled_access_fs=handled_fs,
+        handled_access_net=(_NET_BIND_TCP | _NET_CONNECT_TCP) if abi >= 4 else 0,
+        scoped=(_SCOPE_ABSTRACT_UNIX_SOCKET | _SCOPE_SIGNAL) if abi >= 6 else 0,
+    )
     size = 24 if abi >= 6 else 16 if abi >= 4 else 8
-    ruleset = libc.syscall(ctypes.c_long(names["landlock_create_ruleset"]), ctypes.byref(attr),
-                           ctypes.c_size_t(size), ctypes.c_uint32(0))
+    ruleset = libc.syscall(
+        ctypes.c_long(names["landlock_create_ruleset"]),
+        ctypes.byref(attr),
+        ctypes.c_size_t(size),
+        ctypes.c_uint32(0),
+    )
     if ruleset < 0:
         raise OSError(ctypes.get_errno(), "landlock_create_ruleset failed")
     try:
@@ -286,22 +388,42 @@ def _apply_landlock(policy: ConfinementPolicy, abi: int) -> list[Mechanism]:
                 if not os.path.isdir(path):
                     allowed &= _FILE_RIGHTS
                 rule = _PathBeneathAttr(allowed_access=allowed, parent_fd=fd)
-                if libc.syscall(ctypes.c_long(names["landlock_add_rule"]), ctypes.c_int(ruleset),
-                                ctypes.c_int(_RULE_PATH_BENEATH), ctypes.byref(rule),
-                                ctypes.c_uint32(0)) != 0:
+                if (
+                    libc.syscall(
+                        ctypes.c_long(names["landlock_add_rule"]),
+                        ctypes.c_int(ruleset),
+                        ctypes.c_int(_RULE_PATH_BENEATH),
+                        ctypes.byref(rule),
+                        ctypes.c_uint32(0),
+                    )
+                    != 0
+                ):
                     raise OSError(ctypes.get_errno(), f"landlock_add_rule failed for {path}")
             finally:
                 os.close(fd)
         if abi >= 4:
             for port in policy.connect_ports:
                 net_rule = _NetPortAttr(allowed_access=_NET_CONNECT_TCP, port=port)
-                if libc.syscall(ctypes.c_long(names["landlock_add_rule"]), ctypes.c_int(ruleset),
-                                ctypes.c_int(_RULE_NET_PORT), ctypes.byref(net_rule),
-                                ctypes.c_uint32(0)) != 0:
+                if (
+                    libc.syscall(
+                        ctypes.c_long(names["landlock_add_rule"]),
+                        ctypes.c_int(ruleset),
+                        ctypes.c_int(_RULE_NET_PORT),
+                        ctypes.byref(net_rule),
+                        ctypes.c_uint32(0),
+                    )
+                    != 0
+                ):
                     raise OSError(ctypes.get_errno(), f"landlock_add_rule failed for port {port}")
         _no_new_privs(libc)
-        if libc.syscall(ctypes.c_long(names["landlock_restrict_self"]), ctypes.c_int(ruleset),
-                        ctypes.c_uint32(0)) != 0:
+        if (
+            libc.syscall(
+                ctypes.c_long(names["landlock_restrict_self"]),
+                ctypes.c_int(ruleset),
+                ctypes.c_uint32(0),
+            )
+            != 0
+        ):
             raise OSError(ctypes.get_errno(), "landlock_restrict_self failed")
     finally:
         os.close(ruleset)
@@ -336,8 +458,9 @@ def _apply_seccomp(policy: ConfinementPolicy) -> None:
             rules.add_rule(sc.ERRNO(errno.EACCES), "socket", sc.Arg(0, sc.EQ, family))
         rules.add_rule(sc.ERRNO(errno.EACCES), "socket", sc.Arg(0, sc.GT, _AF_INET6))
         for kind in range(2, 11):
-            rules.add_rule(sc.ERRNO(errno.EACCES), "socket",
-                           sc.Arg(1, sc.MASKED_EQ, _SOCK_TYPE_MASK, kind))
+            rules.add_rule(
+                sc.ERRNO(errno.EACCES), "socket", sc.Arg(1, sc.MASKED_EQ, _SOCK_TYPE_MASK, kind)
+            )
     else:
         rules.add_rule(sc.ERRNO(errno.EACCES), "socket")
     rules.load()
@@ -376,10 +499,14 @@ def _apply_landlock_scopes() -> None:
     restrict = _syscall_number("landlock_restrict_self")
     if create is None or restrict is None:
         raise OSError(errno.ENOSYS, "libseccomp does not know the Landlock syscalls")
-    attr = _RulesetAttr(handled_access_fs=0, handled_access_net=0,
-                        scoped=_SCOPE_ABSTRACT_UNIX_SOCKET | _SCOPE_SIGNAL)
-    ruleset = libc.syscall(ctypes.c_long(create), ctypes.byref(attr), ctypes.c_size_t(24),
-                           ctypes.c_uint32(0))
+    attr = _RulesetAttr(
+        handled_access_fs=0,
+        handled_access_net=0,
+        scoped=_SCOPE_ABSTRACT_UNIX_SOCKET | _SCOPE_SIGNAL,
+    )
+    ruleset = libc.syscall(
+        ctypes.c_long(create), ctypes.byref(attr), ctypes.c_size_t(24), ctypes.c_uint32(0)
+    )
     if ruleset < 0:
         raise OSError(ctypes.get_errno(), "landlock_create_ruleset (scopes) failed")
     try:
@@ -413,8 +540,11 @@ def _processes_of_user() -> int:
         import psutil
 
         uid = os.getuid()
-        return sum(p.info["num_threads"] or 1 for p in psutil.process_iter(["uids", "num_threads"])
-                   if p.info["uids"] is not None and p.info["uids"].real == uid)
+        return sum(
+            p.info["num_threads"] or 1
+            for p in psutil.process_iter(["uids", "num_threads"])
+            if p.info["uids"] is not None and p.info["uids"].real == uid
+        )
     except Exception:  # noqa: BLE001  (a best guess is enough for a limit)
         return 4096
 
@@ -423,8 +553,10 @@ def confine(policy: ConfinementPolicy) -> SandboxReport:
     """Confine this process for good; report what is active and what could not be."""
     report = SandboxReport()
     if threading.active_count() > 1:
-        report.notes.append(f"{threading.active_count()} threads were running at confinement; "
-                            "Landlock covers only the calling thread's descendants")
+        report.notes.append(
+            f"{threading.active_count()} threads were running at confinement; "
+            "Landlock covers only the calling thread's descendants"
+        )
     try:
         _apply_rlimits(policy)
         report.active.append(Mechanism.RLIMITS)
@@ -433,8 +565,10 @@ def confine(policy: ConfinementPolicy) -> SandboxReport:
     abi = landlock_abi()
     report.landlock_abi = abi
     if abi == 0:
-        report.notes.append("Landlock: this kernel offers none (Linux >= 5.13 with "
-                            "CONFIG_SECURITY_LANDLOCK and lsm=landlock)")
+        report.notes.append(
+            "Landlock: this kernel offers none (Linux >= 5.13 with "
+            "CONFIG_SECURITY_LANDLOCK and lsm=landlock)"
+        )
     else:
         try:
             report.active.extend(_apply_landlock(policy, abi))

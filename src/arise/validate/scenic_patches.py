@@ -70,16 +70,16 @@ def check_shapes() -> list[str]:
     problems = []
     release = installed_version("scenic")
     if tuple(int(p) for p in release.split(".")[:2] if p.isdigit()) >= (3, 2):
-        problems.append(f"Scenic {release} is newer than the 3.1 line the patches were "
-                        "written for")
+        problems.append(f"Scenic {release} is newer than the 3.1 line the patches were written for")
     from_file = inspect.getattr_static(Network, "fromFile", None)
     if not isinstance(from_file, classmethod):
         problems.append("Network.fromFile is no longer a classmethod")
     else:
         names = list(inspect.signature(from_file.__func__).parameters)
         if names[:4] != ["cls", "path", "useCache", "writeCache"]:
-            problems.append(f"Network.fromFile takes {names}, not (cls, path, useCache, "
-                            "writeCache, **kwargs)")
+            problems.append(
+                f"Network.fromFile takes {names}, not (cls, path, useCache, writeCache, **kwargs)"
+            )
     if not callable(getattr(simulators.Simulation, "currentState", None)):
         problems.append("Simulation.currentState is gone")
     elif "self.currentState()" not in inspect.getsource(simulators.Simulation):
@@ -110,8 +110,9 @@ def _memoise_networks() -> None:
 
     original = Network.fromFile.__func__
 
-    def cached_from_file(cls: Any, path: Any, useCache: bool = True,
-                         writeCache: bool = True, **kwargs: Any) -> Any:
+    def cached_from_file(
+        cls: Any, path: Any, useCache: bool = True, writeCache: bool = True, **kwargs: Any
+    ) -> Any:
         resolved = os.path.realpath(str(path))
         try:
             stamp = os.stat(resolved).st_mtime_ns
@@ -123,8 +124,10 @@ def _memoise_networks() -> None:
             size = os.path.getsize(resolved) if stamp is not None else 0
             entry = (original(cls, path, useCache=useCache, writeCache=False, **kwargs), size)
         _NETWORK_CACHE[key] = entry  # most recently used last
-        while len(_NETWORK_CACHE) > 1 and sum(
-                size for _, size in _NETWORK_CACHE.values()) > NETWORK_CACHE_BYTES:
+        while (
+            len(_NETWORK_CACHE) > 1
+            and sum(size for _, size in _NETWORK_CACHE.values()) > NETWORK_CACHE_BYTES
+        ):
             del _NETWORK_CACHE[next(iter(_NETWORK_CACHE))]
         return entry[0]
 
@@ -157,8 +160,9 @@ def _memoise_library_parsing() -> None:
         def __init__(self, key: tuple[str, str]):
             self.key = key
 
-    def parse_string(source: str, mode: str, *args: Any, filename: str = "<unknown>",
-                     **kwargs: Any) -> Any:
+    def parse_string(
+        source: str, mode: str, *args: Any, filename: str = "<unknown>", **kwargs: Any
+    ) -> Any:
         if str(filename).startswith(library_roots) and mode == "exec":
             key = (str(filename), source)
             if key in translated:

@@ -80,7 +80,7 @@ def confinement_summary(labels: list[str | None]) -> str:
         key = label or "none (never reached a worker)"
         counts[key] = counts.get(key, 0) + 1
     if len(counts) == 1:
-        (label, count), = counts.items()
+        ((label, count),) = counts.items()
         return f"{label} ({'all ' if count > 1 else ''}{count} check{'s' * (count > 1)})"
     return "; ".join(f"{label}: {count}" for label, count in sorted(counts.items()))
 
@@ -210,7 +210,9 @@ class CheckResult(BaseModel):
     def summary(self) -> str:
         if self.ok and self.simulation is not None:
             sim = self.simulation
-            return (f"OK: {sim.steps} steps, {len(sim.agents)} agents, "
-                    f"ended by {sim.termination_type} ({sim.termination_reason})")
+            return (
+                f"OK: {sim.steps} steps, {len(sim.agents)} agents, "
+                f"ended by {sim.termination_type} ({sim.termination_reason})"
+            )
         assert self.diagnostic is not None
         return f"FAILED at {self.diagnostic.one_line()}"

@@ -153,20 +153,28 @@ def _refusal(refusals: list[Refusal], text: str) -> Diagnostic:
     first = refusals[0]
     others = "; ".join(str(r) for r in refusals[1:4])
     message = first.what + (f" (also {others})" if others else "")
-    return Diagnostic(stage=Stage.GATE, error_type="ForbiddenConstruct", message=message,
-                      hint="scripts may not touch files, processes, the network or the "
-                           "interpreter; remove the construct.",
-                      **locate(text, first.line, first.column))  # type: ignore[arg-type]
+    return Diagnostic(
+        stage=Stage.GATE,
+        error_type="ForbiddenConstruct",
+        message=message,
+        hint="scripts may not touch files, processes, the network or the "
+        "interpreter; remove the construct.",
+        **locate(text, first.line, first.column),
+    )  # type: ignore[arg-type]
 
 
-def _model_problem(info: ScriptInfo, text: str, options: CheckOptions) -> tuple[str | None, list[str]]:
+def _model_problem(
+    info: ScriptInfo, text: str, options: CheckOptions
+) -> tuple[str | None, list[str]]:
     """Which model to compile with, and warnings about the script's own model line."""
     notes: list[str] = []
     if options.simulator == "carla":
         return None, notes
     if info.model is None:
-        notes.append("the script has no `model` line; it was checked with the CARLA model "
-                     "(add `model scenic.simulators.carla.model`)")
+        notes.append(
+            "the script has no `model` line; it was checked with the CARLA model "
+            "(add `model scenic.simulators.carla.model`)"
+        )
     elif info.model not in KNOWN_MODELS:
         import importlib.util
 
@@ -175,16 +183,23 @@ def _model_problem(info: ScriptInfo, text: str, options: CheckOptions) -> tuple[
         except (ImportError, ValueError):
             found = False
         if not found:
-            raise _Failed(Diagnostic(
-                stage=Stage.COMPILE, error_type="ModuleNotFoundError",
-                message=f"world model '{info.model}' does not exist",
-                hint=f"use `model {CARLA_MODEL}`",
-                **locate(text, info.model_line)))  # type: ignore[arg-type]
-        notes.append(f"the script's model is '{info.model}'; it was checked with arise's "
-                     "offline CARLA model")
+            raise _Failed(
+                Diagnostic(
+                    stage=Stage.COMPILE,
+                    error_type="ModuleNotFoundError",
+                    message=f"world model '{info.model}' does not exist",
+                    hint=f"use `model {CARLA_MODEL}`",
+                    **locate(text, info.model_line),
+                )
+            )  # type: ignore[arg-type]
+        notes.append(
+            f"the script's model is '{info.model}'; it was checked with arise's offline CARLA model"
+        )
     elif info.model != CARLA_MODEL:
-        notes.append(f"the script uses the {KNOWN_MODELS[info.model]} model "
-                     f"('{info.model}'); it was checked with arise's offline CARLA model")
+        notes.append(
+            f"the script uses the {KNOWN_MODELS[info.model]} model "
+            f"('{info.model}'); it was checked with arise's offline CARLA model"
+        )
     return OFFLINE_MODEL, notes
 
 
@@ -199,20 +214,32 @@ def _agent_traces(simulation: Any) -> list[AgentTrace]:
         is_ego = obj is ego or getattr(obj, "_obj", None) is ego
         name = "ego" if is_ego else f"{kind}{counts[kind]}"
         points = [
-            TracePoint(step=step, x=round(state[index][0], 3), y=round(state[index][1], 3),
-                       heading=round(state[index][2], 4), speed=round(state[index][3], 3))
+            TracePoint(
+                step=step,
+                x=round(state[index][0], 3),
+                y=round(state[index][1], 3),
+                heading=round(state[index][2], 4),
+                speed=round(state[index][3], 3),
+            )
             for step, state in enumerate(trajectory)
             if index < len(state) and isinstance(state[index], tuple)
         ]
         blueprint = getattr(obj, "blueprint", None)
         behavior = getattr(obj, "behavior", None)
-        traces.append(AgentTrace(
-            name=name, kind=kind, blueprint=blueprint if isinstance(blueprint, str) else None,
-            width=float(obj.width), length=float(obj.length), is_ego=is_ego,
-            behavior=type(behavior).__name__ if behavior is not None else None,
-            intersection_steps=_steps_in_junctions(simulation, points),
-            lane_changes=_lane_changes(simulation, points),
-            trajectory=points))
+        traces.append(
+            AgentTrace(
+                name=name,
+                kind=kind,
+                blueprint=blueprint if isinstance(blueprint, str) else None,
+                width=float(obj.width),
+                length=float(obj.length),
+                is_ego=is_ego,
+                behavior=type(behavior).__name__ if behavior is not None else None,
+                intersection_steps=_steps_in_junctions(simulation, points),
+                lane_changes=_lane_changes(simulation, points),
+                trajectory=points,
+            )
+        )
     return traces
 
 
@@ -252,8 +279,11 @@ def _lane_changes(simulation: Any, points: list[TracePoint]) -> int | None:
 
 
 def _scene_params(scene: Any) -> dict[str, str]:
-    return {str(name): str(value) for name, value in dict(scene.params).items()
-            if isinstance(value, str | int | float | bool)}
+    return {
+        str(name): str(value)
+        for name, value in dict(scene.params).items()
+        if isinstance(value, str | int | float | bool)
+    }
 
 
 def _simulation_facts(simulation: Any) -> SimulationFacts:
@@ -292,13 +322,21 @@ def _fresh_scratch(scratch: Path, name: str, text: str) -> str:
 def _sandbox_hint(error: BaseException) -> str | None:
     """A refusal by the OS-level confinement, said as such."""
     if isinstance(error, RuntimeError) and "can't start new thread" in str(error):
-        return ("the sandbox refused this: a script may run only a few threads; remove the "
-                "construct.")
-    if isinstance(error, OSError) and error.errno in (errno.EPERM, errno.EACCES, errno.ENOSYS,
-                                                     errno.EFBIG, errno.ENOSPC):
-        return ("the sandbox refused this: scripts run confined and may not read the user's "
-                "files, write outside their scratch folder, open network connections or "
-                "start programs; remove the construct.")
+        return (
+            "the sandbox refused this: a script may run only a few threads; remove the construct."
+        )
+    if isinstance(error, OSError) and error.errno in (
+        errno.EPERM,
+        errno.EACCES,
+        errno.ENOSYS,
+        errno.EFBIG,
+        errno.ENOSPC,
+    ):
+        return (
+            "the sandbox refused this: scripts run confined and may not read the user's "
+            "files, write outside their scratch folder, open network connections or "
+            "start programs; remove the construct."
+        )
     return None
 
 
@@ -333,19 +371,23 @@ def run_check(request: dict[str, Any], emit: Emit, scratch: Path) -> CheckResult
             except KeyboardInterrupt as interrupt:
                 if not watchdog.fired:
                     raise
-                timeout = CheckTimeout(f"the check ran longer than {options.timeout:g} s "
-                                       f"(in the {stage.value} stage)")
+                timeout = CheckTimeout(
+                    f"the check ran longer than {options.timeout:g} s (in the {stage.value} stage)"
+                )
                 timeout.__traceback__ = interrupt.__traceback__
                 diagnostic = from_exception(timeout, stage, text, path, info, _VOCABULARY)
-                diagnostic.hint = ("an endless loop or a very slow computation; make loops "
-                                   "`wait` or `take` an action each step, or raise --timeout.")
+                diagnostic.hint = (
+                    "an endless loop or a very slow computation; make loops "
+                    "`wait` or `take` an action each step, or raise --timeout."
+                )
                 raise _Failed(diagnostic) from None
     except _Failed as failure:
         result.diagnostic = failure.diagnostic
     except MemoryError as error:
         result.diagnostic = from_exception(error, stage, text, path, info, _VOCABULARY)
-        result.diagnostic.message = (f"the script exceeded the memory limit of "
-                                     f"{options.memory_mb} MB")
+        result.diagnostic.message = (
+            f"the script exceeded the memory limit of {options.memory_mb} MB"
+        )
     except Exception as error:  # noqa: BLE001  (any script failure becomes a Diagnostic)
         stage_of_error = Stage.PARSE if _is_syntax_error(error) else stage
         result.diagnostic = from_exception(error, stage_of_error, text, path, info, _VOCABULARY)
@@ -360,9 +402,16 @@ def _is_syntax_error(error: BaseException) -> bool:
     return isinstance(error, (ScenicSyntaxError, SyntaxError))
 
 
-def _run_stages(path: str, text: str, info: ScriptInfo, options: CheckOptions,
-                map_choice: MapChoice | None, result: CheckResult,
-                enter: Callable[[Stage], float], timings: dict[str, float]) -> None:
+def _run_stages(
+    path: str,
+    text: str,
+    info: ScriptInfo,
+    options: CheckOptions,
+    map_choice: MapChoice | None,
+    result: CheckResult,
+    enter: Callable[[Stage], float],
+    timings: dict[str, float],
+) -> None:
     import scenic
     from scenic.core.distributions import RejectionException
     from scenic.core.simulators import SimulationCreationError
@@ -381,8 +430,11 @@ def _run_stages(path: str, text: str, info: ScriptInfo, options: CheckOptions,
         params["map"] = map_choice.path
         params["carla_map"] = map_choice.name
     if options.simulator == "carla":
-        params.update(address=options.carla_host, port=options.carla_port,
-                      timeout=int(max(1, options.carla_timeout)))
+        params.update(
+            address=options.carla_host,
+            port=options.carla_port,
+            timeout=int(max(1, options.carla_timeout)),
+        )
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         from scenic.core.dynamics import StuckBehaviorWarning
@@ -401,14 +453,21 @@ def _run_stages(path: str, text: str, info: ScriptInfo, options: CheckOptions,
         try:
             with redirect_stdout(log):
                 scene, iterations = scenario.generate(
-                    maxIterations=options.sample_iterations, verbosity=2)
+                    maxIterations=options.sample_iterations, verbosity=2
+                )
         except RejectionException as error:
             rejections = rejections_from_log(log.getvalue(), text)
             result.sample_iterations_used += options.sample_iterations
-            raise _Failed(rejection_diagnostic(
-                Stage.SAMPLE, f"no scene satisfied the requirements in "
-                f"{options.sample_iterations} samples ({error})", rejections, text,
-                options.sample_iterations)) from None
+            raise _Failed(
+                rejection_diagnostic(
+                    Stage.SAMPLE,
+                    f"no scene satisfied the requirements in "
+                    f"{options.sample_iterations} samples ({error})",
+                    rejections,
+                    text,
+                    options.sample_iterations,
+                )
+            ) from None
         result.sample_iterations_used += iterations
         timings["sample"] = round(timings.get("sample", 0) + time.perf_counter() - started, 3)
 
@@ -424,10 +483,12 @@ def _run_stages(path: str, text: str, info: ScriptInfo, options: CheckOptions,
             continue
         finally:
             timings["simulate"] = round(
-                timings.get("simulate", 0) + time.perf_counter() - started, 3)
+                timings.get("simulate", 0) + time.perf_counter() - started, 3
+            )
         if simulation is None:
-            rejected_sims.extend(line for line in log.getvalue().splitlines()
-                                 if "Rejected simulation" in line)
+            rejected_sims.extend(
+                line for line in log.getvalue().splitlines() if "Rejected simulation" in line
+            )
             continue
         result.simulation = _simulation_facts(simulation)
         result.simulation_rejections = rejections_from_log("\n".join(rejected_sims), text)
@@ -436,19 +497,28 @@ def _run_stages(path: str, text: str, info: ScriptInfo, options: CheckOptions,
             from arise.validate.render import draw_scene
 
             title = f"{Path(path).name} on {map_choice.name if map_choice else '?'}"
-            result.png = draw_scene(getattr(scene.workspace, "network", None),
-                                    result.simulation.agents, options.png, title,
-                                    result.simulation.collisions)
+            result.png = draw_scene(
+                getattr(scene.workspace, "network", None),
+                result.simulation.agents,
+                options.png,
+                title,
+                result.simulation.collisions,
+            )
             timings["png"] = round(time.perf_counter() - started, 3)
         simulator.destroy()
         return
     if simulator is not None:
         simulator.destroy()
     rejections = rejections_from_log("\n".join(rejected_sims), text)
-    raise _Failed(rejection_diagnostic(
-        Stage.SIMULATE,
-        f"every one of {options.spawn_attempts} simulations was rejected",
-        rejections, text, options.spawn_attempts))
+    raise _Failed(
+        rejection_diagnostic(
+            Stage.SIMULATE,
+            f"every one of {options.spawn_attempts} simulations was rejected",
+            rejections,
+            text,
+            options.spawn_attempts,
+        )
+    )
 
 
 def _useful_warnings(caught: list[warnings.WarningMessage]) -> list[str]:
@@ -462,12 +532,11 @@ def _useful_warnings(caught: list[warnings.WarningMessage]) -> list[str]:
     return seen[:10]
 
 
-
-
 # --- process entry point -------------------------------------------------------------------
 def _connect_ports() -> tuple[int, ...]:
-    return tuple(int(p) for p in os.environ.get("ARISE_WORKER_CONNECT_PORTS", "").split(",")
-                 if p.strip())
+    return tuple(
+        int(p) for p in os.environ.get("ARISE_WORKER_CONNECT_PORTS", "").split(",") if p.strip()
+    )
 
 
 def _confined() -> bool:
@@ -493,19 +562,25 @@ def _confine(scratch: Path, namespace_problem: str | None) -> SandboxReport:
     memory_mb = int(os.environ.get("ARISE_WORKER_MEMORY_MB", "0"))
     policy = dataclasses.replace(
         python_policy(scratch, memory_mb=memory_mb, connect_ports=_connect_ports()),
-        allow_fork=True, in_namespaces=namespace_problem is None)
+        allow_fork=True,
+        in_namespaces=namespace_problem is None,
+    )
     if not _confined():
         import resource
 
         if policy.memory_bytes:
             resource.setrlimit(resource.RLIMIT_AS, (policy.memory_bytes, policy.memory_bytes))
-        return SandboxReport(missing=list(Mechanism),
-                             notes=["confinement turned off by the caller (benchmarks only)"])
+        return SandboxReport(
+            missing=list(Mechanism),
+            notes=["confinement turned off by the caller (benchmarks only)"],
+        )
     report = confine(policy)
     if namespace_problem:
         report.notes.append(namespace_problem)
-    report.notes.append("each script runs in a fresh child process that cannot start "
-                        "processes; nothing it changes outlives its check")
+    report.notes.append(
+        "each script runs in a fresh child process that cannot start "
+        "processes; nothing it changes outlives its check"
+    )
     return report
 
 
@@ -526,9 +601,12 @@ def _prime() -> None:
 
     choice = MapRegistry(None).resolve("arise_straight")
     prepare_map(Path(choice.path))
-    scenario = scenic.scenarioFromString(PRIME_SCRIPT, params={"map": choice.path,
-                                         "carla_map": choice.name}, model=OFFLINE_MODEL,
-                                         mode2D=True)
+    scenario = scenic.scenarioFromString(
+        PRIME_SCRIPT,
+        params={"map": choice.path, "carla_map": choice.name},
+        model=OFFLINE_MODEL,
+        mode2D=True,
+    )
     scenario.generate(maxIterations=50)
 
 
@@ -560,11 +638,11 @@ def _relay(read_fd: int, emit: Emit) -> bool:
                     continue
                 if not isinstance(message, dict) or got_result:
                     continue
-                if message.get("event") == "stage" and message.get("stage") in \
-                        {s.value for s in Stage}:
+                if message.get("event") == "stage" and message.get("stage") in {
+                    s.value for s in Stage
+                }:
                     emit({"event": "stage", "stage": message["stage"]})
-                elif message.get("event") == "result" and isinstance(message.get("result"),
-                                                                      dict):
+                elif message.get("event") == "result" and isinstance(message.get("result"), dict):
                     emit(message)
                     got_result = True
     return got_result
@@ -621,8 +699,9 @@ def main() -> None:
         protocol.flush()
 
     # Started by hand (to see why a worker fails): a scratch folder of its own.
-    scratch = Path(os.environ.get("ARISE_WORKER_SCRATCH") or
-                   tempfile.mkdtemp(prefix="arise-worker-"))
+    scratch = Path(
+        os.environ.get("ARISE_WORKER_SCRATCH") or tempfile.mkdtemp(prefix="arise-worker-")
+    )
     namespace_problem = _enter_namespaces(scratch)
     os.chdir(scratch)  # the tmpfs now mounted there, not the folder beneath it
     _warm_up()

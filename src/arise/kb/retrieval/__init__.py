@@ -19,8 +19,9 @@ BACKENDS = ("auto", "bm25", "embedding", "hybrid")
 HYBRID_LEXICAL_WEIGHT = 1.5
 
 
-def make_retriever(kb: KnowledgeBase, backend: str = "auto",
-                   model: str | os.PathLike[str] | None = None) -> Retriever:
+def make_retriever(
+    kb: KnowledgeBase, backend: str = "auto", model: str | os.PathLike[str] | None = None
+) -> Retriever:
     """A retriever over `kb`.
 
     backend: "bm25"; "embedding" or "hybrid" (BM25 + embeddings; both raise
@@ -34,16 +35,29 @@ def make_retriever(kb: KnowledgeBase, backend: str = "auto",
     if backend == "embedding":
         return EmbeddingRetriever(kb, model)
     if backend == "hybrid":
-        return HybridRetriever(BM25Retriever(kb), EmbeddingRetriever(kb, model),
-                               HYBRID_LEXICAL_WEIGHT)
+        return HybridRetriever(
+            BM25Retriever(kb), EmbeddingRetriever(kb, model), HYBRID_LEXICAL_WEIGHT
+        )
     if find_model(model) is not None:
         try:
-            return HybridRetriever(BM25Retriever(kb), EmbeddingRetriever(kb, model),
-                                   HYBRID_LEXICAL_WEIGHT)
+            return HybridRetriever(
+                BM25Retriever(kb), EmbeddingRetriever(kb, model), HYBRID_LEXICAL_WEIGHT
+            )
         except EmbeddingUnavailable:
             pass
     return BM25Retriever(kb)
 
 
-__all__ = ["BACKENDS", "HYBRID_LEXICAL_WEIGHT", "BM25Retriever", "EmbeddingRetriever", "EmbeddingUnavailable", "Hit",
-           "HybridRetriever", "Retriever", "RetrieverError", "find_model", "make_retriever"]
+__all__ = [
+    "BACKENDS",
+    "HYBRID_LEXICAL_WEIGHT",
+    "BM25Retriever",
+    "EmbeddingRetriever",
+    "EmbeddingUnavailable",
+    "Hit",
+    "HybridRetriever",
+    "Retriever",
+    "RetrieverError",
+    "find_model",
+    "make_retriever",
+]

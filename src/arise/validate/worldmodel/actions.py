@@ -24,8 +24,14 @@ def record_event(sim: Any, obj: Any, kind: str, **details: Any) -> None:
     """Remember an action the offline simulator cannot act out (e.g. a light change)."""
     events = getattr(sim, "arise_events", None)
     if events is not None:
-        events.append({"step": sim.currentTime, "agent": str(getattr(obj, "name", obj)),
-                       "kind": kind, **details})
+        events.append(
+            {
+                "step": sim.currentTime,
+                "agent": str(getattr(obj, "name", obj)),
+                "kind": kind,
+                **details,
+            }
+        )
 
 
 class _CarlaVehicle:
@@ -128,8 +134,13 @@ class SetAutopilotAction(VehicleAction):
             if self.speed_difference is not None:
                 speed *= 1 - float(self.speed_difference) / 100
         obj.arise_autopilot = {"speed": float(speed), "path": self.path}
-        record_event(sim, obj, "autopilot", speed=float(speed), **{
-            k: v for k, v in self.options.items() if isinstance(v, (int, float, bool, str))})
+        record_event(
+            sim,
+            obj,
+            "autopilot",
+            speed=float(speed),
+            **{k: v for k, v in self.options.items() if isinstance(v, (int, float, bool, str))},
+        )
 
 
 class SetVehicleLightStateAction(VehicleAction):
@@ -171,8 +182,7 @@ class TrackWaypointsAction(VehicleAction):
     """Steer along a list of waypoints at a cruising speed (pure pursuit offline)."""
 
     def __init__(self, waypoints: Any, cruising_speed: float = 10):
-        self.waypoints = [Vector(*w[:2]) if not isinstance(w, Vector) else w
-                          for w in waypoints]
+        self.waypoints = [Vector(*w[:2]) if not isinstance(w, Vector) else w for w in waypoints]
         self.cruising_speed = cruising_speed
 
     def applyTo(self, obj: Any, sim: Any) -> None:

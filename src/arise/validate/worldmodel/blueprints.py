@@ -43,9 +43,11 @@ def check_blueprint(obj: Any) -> None:
         close = difflib.get_close_matches(blueprint, sorted(known), n=3, cutoff=0.6)
         suggestion = f"; close valid ones: {', '.join(close)}" if close else ""
         raise UnknownBlueprintError(
-            f"unknown CARLA blueprint '{blueprint}' for a {type(obj).__name__}{suggestion}")
+            f"unknown CARLA blueprint '{blueprint}' for a {type(obj).__name__}{suggestion}"
+        )
     prefixes = _required_prefixes(obj)
     if prefixes and not blueprint.startswith(prefixes):
         raise UnknownBlueprintError(
             f"blueprint '{blueprint}' is not a {type(obj).__name__} blueprint "
-            f"(expected one starting with {' or '.join(prefixes)})")
+            f"(expected one starting with {' or '.join(prefixes)})"
+        )

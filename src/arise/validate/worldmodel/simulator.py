@@ -192,9 +192,10 @@ class OfflineCarlaSimulation(DrivingSimulation):
                 continue
             offset = other.position - obj.position
             ahead = offset.dot(forward)
-            if 0 < ahead < AUTOPILOT_GAP + obj.length / 2 and abs(
-                offset.x * forward.y - offset.y * forward.x
-            ) < (obj.width + other.width) / 2:
+            if (
+                0 < ahead < AUTOPILOT_GAP + obj.length / 2
+                and abs(offset.x * forward.y - offset.y * forward.x) < (obj.width + other.width) / 2
+            ):
                 return True
         return False
 
@@ -219,11 +220,15 @@ class OfflineCarlaSimulation(DrivingSimulation):
         signals = self._signals_near(obj)
         for signal in signals:
             self.arise_lights[str(signal.openDriveID)] = color
-        self.arise_events.append({
-            "step": self.currentTime, "agent": str(getattr(obj, "name", obj)),
-            "kind": "traffic_light", "color": color,
-            "signals": [str(s.openDriveID) for s in signals],
-        })
+        self.arise_events.append(
+            {
+                "step": self.currentTime,
+                "agent": str(getattr(obj, "name", obj)),
+                "kind": "traffic_light",
+                "color": color,
+                "signals": [str(s.openDriveID) for s in signals],
+            }
+        )
 
     def arise_light_of(self, obj: Any) -> str | None:
         signals = self._signals_near(obj)
@@ -233,9 +238,15 @@ class OfflineCarlaSimulation(DrivingSimulation):
 
     def arise_set_signal(self, signal: Any, color: str) -> None:
         self.arise_lights[str(signal.openDriveID)] = color
-        self.arise_events.append({"step": self.currentTime, "agent": "world",
-                                  "kind": "traffic_light", "color": color,
-                                  "signals": [str(signal.openDriveID)]})
+        self.arise_events.append(
+            {
+                "step": self.currentTime,
+                "agent": "world",
+                "kind": "traffic_light",
+                "color": color,
+                "signals": [str(signal.openDriveID)],
+            }
+        )
 
     # --- controllers tuned for this physics ------------------------------------------
     def _pid_pair(self, agent: Any, lateral: tuple[float, float, float]) -> tuple[Any, Any]:

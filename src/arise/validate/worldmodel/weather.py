@@ -26,13 +26,15 @@ def check_weather(weather: Any) -> None:
     """Raise WeatherError if CARLA would refuse this weather value."""
     if isinstance(weather, str):
         if weather not in WEATHER_PRESETS:
-            raise WeatherError(f"unknown CARLA weather preset {weather!r}"
-                               f"{_suggest(weather, WEATHER_PRESETS)}")
+            raise WeatherError(
+                f"unknown CARLA weather preset {weather!r}{_suggest(weather, WEATHER_PRESETS)}"
+            )
     elif isinstance(weather, dict):
         for key, value in weather.items():
             if key not in WEATHER_FIELDS:
-                raise WeatherError(f"unknown CARLA weather parameter {key!r}"
-                                   f"{_suggest(str(key), WEATHER_FIELDS)}")
+                raise WeatherError(
+                    f"unknown CARLA weather parameter {key!r}{_suggest(str(key), WEATHER_FIELDS)}"
+                )
             if not isinstance(value, (int, float)):
                 raise WeatherError(f"weather parameter {key!r} must be a number, got {value!r}")
     elif weather is not None:
