@@ -31,11 +31,13 @@ from typing import Any, TypeVar
 from arise.errors import AriseError
 from arise.generate.conformity import (
     LANE_HALF,
-    MOVED_METRES,
     NEXT_LANE,
     TURN_DEGREES,
     ego_maneuver,
+    frame,
     start_relation,
+    travel_heading,
+    wrap,
 )
 from arise.validate.types import AgentTrace, CheckResult, SimulationFacts, TracePoint
 from arise.vocabulary import (
@@ -461,25 +463,12 @@ class Fidelity:
 
 
 def _wrap_degrees(angle: float) -> float:
-    return math.degrees((angle + math.pi) % (2 * math.pi) - math.pi)
+    return math.degrees(wrap(angle))
 
 
 def _lateral(origin: TracePoint, point: TracePoint) -> float:
-    """Metres `point` lies left of `origin` (Scenic heading 0 = +y, counter-clockwise)."""
-    dx, dy = point.x - origin.x, point.y - origin.y
-    return -dx * math.cos(origin.heading) - dy * math.sin(origin.heading)
-
-
-def _travel_heading(trace: AgentTrace) -> float | None:
-    """Heading of the first metres actually moved, or None if it never moved."""
-    if not trace.trajectory:
-        return None
-    start = trace.trajectory[0]
-    for point in trace.trajectory:
-        dx, dy = point.x - start.x, point.y - start.y
-        if math.hypot(dx, dy) >= MOVED_METRES:
-            return math.atan2(-dx, dy)
-    return None
+    """Metres `point` lies left of `origin`."""
+    return frame(origin, point.x, point.y)[1]
 
 
 @cache
@@ -541,7 +530,7 @@ def placement(ego: AgentTrace, agent: AgentTrace) -> Placement | None:
 
 
 def _direction(origin: TracePoint, agent: AgentTrace) -> Direction:
-    travel = _travel_heading(agent)
+    travel = travel_heading(agent)
     if travel is None:
         return Direction.STATIONARY
     turn = _wrap_degrees(agent.trajectory[-1].heading - agent.trajectory[0].heading)
@@ -586,7 +575,7 @@ def observed_maneuver(ego: AgentTrace) -> Maneuver | None:
     count, else sideways drift) to the side it went furthest, or straight."""
     if not ego.trajectory:
         return None
-    if _travel_heading(ego) is None:
+    if travel_heading(ego) is None:
         return Maneuver.STOPPED
     coarse = ego_maneuver(ego)
     if coarse is None:

@@ -103,11 +103,12 @@ def find_adversary(agents: list[AgentTrace]) -> AgentTrace | None:
     return candidates[0] if candidates else None
 
 
-def _wrap(angle: float) -> float:
+def wrap(angle: float) -> float:
+    """An angle in radians brought into [-pi, pi)."""
     return (angle + math.pi) % (2 * math.pi) - math.pi
 
 
-def _frame(origin: TracePoint, x: float, y: float) -> tuple[float, float]:
+def frame(origin: TracePoint, x: float, y: float) -> tuple[float, float]:
     """(ahead, left) of a point in the frame of `origin` (Scenic heading 0 = +y, CCW)."""
     dx, dy = x - origin.x, y - origin.y
     forward = (-math.sin(origin.heading), math.cos(origin.heading))
@@ -115,7 +116,7 @@ def _frame(origin: TracePoint, x: float, y: float) -> tuple[float, float]:
     return dx * forward[0] + dy * forward[1], dx * left[0] + dy * left[1]
 
 
-def _travel_heading(trace: AgentTrace) -> float | None:
+def travel_heading(trace: AgentTrace) -> float | None:
     """Heading of the first few metres actually driven or walked, or None if it never moved."""
     if not trace.trajectory:
         return None
@@ -131,14 +132,14 @@ def ego_maneuver(ego: AgentTrace) -> EgoManeuver | None:
     if len(ego.trajectory) < 2:
         return None
     start, end = ego.trajectory[0], ego.trajectory[-1]
-    turn = math.degrees(_wrap(end.heading - start.heading))
+    turn = math.degrees(wrap(end.heading - start.heading))
     if turn > TURN_DEGREES:
         return EgoManeuver.TURN_LEFT
     if turn < -TURN_DEGREES:
         return EgoManeuver.TURN_RIGHT
     if ego.lane_changes is not None:
         return EgoManeuver.CHANGE_LANE if ego.lane_changes else EgoManeuver.GO_STRAIGHT
-    _, lateral = _frame(start, end.x, end.y)  # no map to ask: sideways drift is the sign
+    _, lateral = frame(start, end.x, end.y)  # no map to ask: sideways drift is the sign
     return EgoManeuver.CHANGE_LANE if abs(lateral) > LANE_CHANGE_METRES else EgoManeuver.GO_STRAIGHT
 
 
@@ -166,12 +167,12 @@ def start_relation(ego: AgentTrace, adversary: AgentTrace) -> StartRelation | No
     if not ego.trajectory or not adversary.trajectory:
         return None
     origin, first = ego.trajectory[0], adversary.trajectory[0]
-    ahead, left = _frame(origin, first.x, first.y)
-    heading = _travel_heading(adversary)
+    ahead, left = frame(origin, first.x, first.y)
+    heading = travel_heading(adversary)
     if heading is None:
         direction = "unknown"
     else:
-        delta = abs(math.degrees(_wrap(heading - origin.heading)))
+        delta = abs(math.degrees(wrap(heading - origin.heading)))
         direction = "same" if delta < 45 else "opposite" if delta > 135 else "crossing"
     return StartRelation(ahead=ahead, left=left, direction=direction)
 

@@ -27,18 +27,11 @@ from typing import Any
 from scenic.domains.driving.roads import Intersection, ManeuverType, Network, Road
 from shapely.geometry import Point
 
-#: Order of features in every list we write (same vocabulary as maps.json).
-FEATURES = (
-    "straight",
-    "multilane",
-    "sidewalk",
-    "intersection4",
-    "tjunction",
-    "signalized",
-    "highway",
-    "curve",
-    "roundabout",
-)
+from arise.vocabulary import MAP_FEATURES
+
+#: Order of features in every list we write: the vocabulary's, plus what we detect but
+#: no knowledge-base entry needs.
+FEATURES = (*MAP_FEATURES, "roundabout")
 
 #: Road ends whose directions differ by less than this form one junction arm
 #: (two carriageways side by side, a ramp merging at a shallow angle).

@@ -14,6 +14,7 @@ from collections import Counter
 from collections.abc import Iterable
 from pathlib import Path
 from types import TracebackType
+from typing import TypedDict
 
 from arise.sections import section_of_line
 from arise.validate.script_info import ScriptInfo
@@ -42,7 +43,16 @@ def excerpt(text: str, line: int | None, context: int = 2, column: int | None = 
     return "\n".join(out)
 
 
-def locate(text: str, line: int | None, column: int | None = None) -> dict[str, object]:
+class Location(TypedDict):
+    """Where in the script a diagnostic points: the fields it shares with `Diagnostic`."""
+
+    line: int | None
+    column: int | None
+    section: str | None
+    excerpt: str | None
+
+
+def locate(text: str, line: int | None, column: int | None = None) -> Location:
     """The section and excerpt fields for a line of the script."""
     return {
         "line": line,
@@ -200,7 +210,7 @@ def from_exception(
         error_type=error_type,
         message=message.strip().splitlines()[0] if message.strip() else error_type,
         hint=hint or hint_for(error_type, message, vocabulary, code_line),
-        **locate(text, line, column),  # type: ignore[arg-type]
+        **locate(text, line, column),
     )
 
 
@@ -288,4 +298,4 @@ def rejection_diagnostic(
         hint=hint,
         rejections=rejections,
         **fields,
-    )  # type: ignore[arg-type]
+    )

@@ -160,7 +160,7 @@ def _refusal(refusals: list[Refusal], text: str) -> Diagnostic:
         hint="scripts may not touch files, processes, the network or the "
         "interpreter; remove the construct.",
         **locate(text, first.line, first.column),
-    )  # type: ignore[arg-type]
+    )
 
 
 def _model_problem(
@@ -191,7 +191,7 @@ def _model_problem(
                     hint=f"use `model {CARLA_MODEL}`",
                     **locate(text, info.model_line),
                 )
-            )  # type: ignore[arg-type]
+            )
         notes.append(
             f"the script's model is '{info.model}'; it was checked with arise's offline CARLA model"
         )
