@@ -12,6 +12,10 @@ imported Scenic and before it reads any script, and cannot be undone:
   work), sockets, ptrace, mounts, namespaces, raising limits, changing file modes and
   owners (which Landlock does not cover), and kernel-facing calls a script never needs.
 - rlimits bound memory, file size, open files, processes and core dumps.
+- `enter_namespaces()` (called first, while the worker is one thread) gives it its own
+  user, mount and (offline) network namespaces with a size-limited tmpfs as scratch.
+- `isolate_child()` is what the fork server's child calls before it runs a script: no new
+  processes at all, and a nested Landlock domain that cannot signal the server.
 
 What could not be applied is reported, never hidden: the `SandboxReport` names what is
 active and what is missing, and every check result carries it.
@@ -25,7 +29,7 @@ import os
 import resource
 import sys
 import threading
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from pathlib import Path
 
 from arise.validate.types import Mechanism, SandboxReport
@@ -186,7 +190,7 @@ _DENIED_SYSCALLS = (
 _NEW_PROCESSES = ("fork", "vfork")  # and clone without CLONE_THREAD
 _CLONE_THREAD = 0x00010000
 _AF_INET, _AF_INET6 = 2, 10
-_SOCK_STREAM, _SOCK_TYPE_MASK = 1, 0xF
+_SOCK_TYPE_MASK = 0xF  # the type bits of socket()'s second argument (flags above)
 
 
 @dataclass(frozen=True)
@@ -204,7 +208,7 @@ class ConfinementPolicy:
     # TCP ports the worker may connect to (the CARLA server's); empty: no network at all.
     connect_ports: tuple[int, ...] = ()
     # A fork server (the validation worker) may fork the children that run scripts; each
-    # child then calls `forbid_new_processes()` before it touches a script.
+    # child then calls `isolate_child()` before it touches a script.
     allow_fork: bool = False
     memory_bytes: int | None = None
     file_size_bytes: int = 64 * 1024 * 1024
@@ -212,7 +216,6 @@ class ConfinementPolicy:
     extra_processes: int = 64  # threads count as processes for RLIMIT_NPROC
     # Set when the process already runs in its own namespaces (enter_namespaces).
     in_namespaces: bool = False
-    notes: list[str] = field(default_factory=list)
 
 
 def python_policy(
