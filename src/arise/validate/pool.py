@@ -28,7 +28,7 @@ from typing import Any
 
 from arise.errors import AriseError
 from arise.paths import cache_dir
-from arise.validate.process_limit import MAX_TASKS, count_tasks, limit_tasks
+from arise.validate.process_limit import MAX_TASKS, cleanup_stale, count_tasks, limit_tasks
 from arise.validate.types import Diagnostic, SandboxReport, Stage
 
 READY_TIMEOUT = 120.0  # seconds for a cold worker to import Scenic on a busy machine
@@ -314,6 +314,7 @@ class WorkerPool:
         self.recycle_after = recycle_after
         self.require_sandbox = require_sandbox
         self.confine = confine
+        cleanup_stale()  # task-limit cgroups a killed parent could not remove
         self._idle: queue.LifoQueue[Worker] = queue.LifoQueue()
         self._started = 0
         self._closed = False

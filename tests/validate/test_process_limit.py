@@ -1,0 +1,61 @@
+"""The task cap of a worker: a pids cgroup where one can be made, the watchdog otherwise."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+
+import pytest
+
+from arise.validate.process_limit import (
+    MAX_TASKS,
+    TaskLimit,
+    cleanup_stale,
+    count_tasks,
+    limit_tasks,
+)
+
+
+@pytest.fixture()
+def sleeper() -> subprocess.Popen[bytes]:
+    child = subprocess.Popen([sys.executable, "-c", "import time; time.sleep(30)"])
+    yield child
+    child.kill()
+    child.wait()
+
+
+def test_a_process_gets_its_own_capped_cgroup(sleeper: subprocess.Popen[bytes]) -> None:
+    limit = limit_tasks(sleeper.pid)
+    if limit is None:
+        pytest.skip("no writable pids cgroup here (not root, or no pids controller)")
+    try:
+        assert (limit.folder / "pids.max").read_text().strip() == str(MAX_TASKS)
+        members = (limit.folder / "cgroup.procs").read_text().split()
+        assert str(sleeper.pid) in members
+        assert "pids.max" in limit.describe()
+    finally:
+        sleeper.kill()
+        sleeper.wait()
+        limit.release()
+    assert not limit.folder.exists()
+
+
+def test_tasks_are_counted_across_the_process_tree(sleeper: subprocess.Popen[bytes]) -> None:
+    assert count_tasks(sleeper.pid) >= 1
+    sleeper.kill()
+    sleeper.wait()
+    assert count_tasks(sleeper.pid) == 0
+
+
+def test_stale_cgroups_of_dead_workers_are_removed() -> None:
+    child = subprocess.Popen([sys.executable, "-c", "import time; time.sleep(0.2)"])
+    probe = limit_tasks(child.pid)
+    if probe is None:
+        child.kill()
+        child.wait()
+        pytest.skip("no writable pids cgroup here")
+    assert child.wait(10) == 0  # the worker is gone; its (empty) cgroup is not
+    assert probe.folder.exists()
+    cleanup_stale()
+    assert not probe.folder.exists()
+    assert isinstance(probe, TaskLimit)
