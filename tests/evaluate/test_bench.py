@@ -129,6 +129,8 @@ def test_ray_executor_on_a_local_instance(
     assert sorted(r.task.prompt_id for r in finished) == ["cyclist-brakes", "left-turn"]
     assert [r.ok for r in stored] == [True, True]
     assert all(Path(r.out_dir or "").joinpath("scenario.scenic").is_file() for r in stored)
+    # Scripts checked inside Ray actors ran confined like everywhere else.
+    assert all((r.sandbox or "").startswith("landlock+seccomp+rlimits") for r in stored)
 
 
 def test_user_mistakes_get_clear_errors(tmp_path: Path) -> None:
