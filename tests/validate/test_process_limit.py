@@ -2,8 +2,10 @@
 
 from __future__ import annotations
 
+import os
 import subprocess
 import sys
+import tempfile
 
 import pytest
 
@@ -59,3 +61,17 @@ def test_stale_cgroups_of_dead_workers_are_removed() -> None:
     cleanup_stale()
     assert not probe.folder.exists()
     assert isinstance(probe, TaskLimit)
+
+
+def test_scratch_folders_of_dead_parents_are_swept() -> None:
+    from arise.validate.pool import SCRATCH_PREFIX, sweep_scratch
+
+    child = subprocess.Popen([sys.executable, "-c", "pass"])
+    child.wait()
+    leftover = Path(tempfile.mkdtemp(prefix=f"{SCRATCH_PREFIX}{child.pid}-"))
+    mine = Path(tempfile.mkdtemp(prefix=f"{SCRATCH_PREFIX}{os.getpid()}-"))
+    try:
+        sweep_scratch()
+        assert not leftover.exists() and mine.exists()
+    finally:
+        mine.rmdir()

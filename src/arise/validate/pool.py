@@ -26,6 +26,8 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
+import psutil
+
 from arise.errors import AriseError
 from arise.paths import cache_dir
 from arise.validate.process_limit import MAX_TASKS, cleanup_stale, count_tasks, limit_tasks
@@ -35,6 +37,7 @@ READY_TIMEOUT = 120.0  # seconds for a cold worker to import Scenic on a busy ma
 KILL_GRACE = 3.0  # seconds after the time limit before the process group is killed
 SCRATCH_QUOTA_BYTES = 256 * 1024 * 1024  # a script that writes more is stopped
 MESSAGE_LIMIT_BYTES = 64 * 1024 * 1024  # one protocol line; a longer one is a flood
+SCRATCH_PREFIX = "arise-worker-"  # then the parent's pid, so leftovers can be swept
 # Variables a worker inherits; everything else (API keys above all) stays behind.
 _PASSED_ENV = (
     "PATH",
@@ -90,6 +93,14 @@ def _worker_env(
     return env
 
 
+def sweep_scratch() -> None:
+    """Remove scratch folders whose parent process is gone (it was killed before it could)."""
+    for folder in Path(tempfile.gettempdir()).glob(f"{SCRATCH_PREFIX}*-*"):
+        owner = folder.name.removeprefix(SCRATCH_PREFIX).split("-", 1)[0]
+        if owner.isdigit() and not psutil.pid_exists(int(owner)):
+            shutil.rmtree(folder, ignore_errors=True)
+
+
 def _folder_bytes(folder: Path) -> int:
     total = 0
     for root, _, files in os.walk(folder):
@@ -104,7 +115,7 @@ class Worker:
 
     def __init__(self, memory_mb: int, connect_ports: tuple[int, ...] = (), confine: bool = True):
         self.connect_ports = connect_ports
-        self.scratch = Path(tempfile.mkdtemp(prefix="arise-worker-"))
+        self.scratch = Path(tempfile.mkdtemp(prefix=f"{SCRATCH_PREFIX}{os.getpid()}-"))
         self.process = subprocess.Popen(
             [sys.executable, "-m", "arise.validate.worker"],
             stdin=subprocess.PIPE,
@@ -314,7 +325,8 @@ class WorkerPool:
         self.recycle_after = recycle_after
         self.require_sandbox = require_sandbox
         self.confine = confine
-        cleanup_stale()  # task-limit cgroups a killed parent could not remove
+        cleanup_stale()  # task-limit cgroups and scratch folders a killed parent left
+        sweep_scratch()
         self._idle: queue.LifoQueue[Worker] = queue.LifoQueue()
         self._started = 0
         self._closed = False
