@@ -242,7 +242,7 @@ class Worker:
                 self.checks_done += 1
                 return dict(message["result"])
             elif message.get("event") == "child_died":
-                raise WorkerDied(self._child_death(stage, int(message.get("code") or 0)))
+                raise WorkerDied(self._child_death(stage, message))
 
     def _death(self, stage: str, timeout: float, timed_out: bool) -> Diagnostic:
         """Why the worker stopped answering: its deadline passed (a timeout), or it died
@@ -272,19 +272,29 @@ class Worker:
             ),
         )
 
-    def _child_death(self, stage: str, code: int) -> Diagnostic:
-        """The child that ran the script died without a result (the server is fine)."""
+    def _child_death(self, stage: str, message: dict[str, Any]) -> Diagnostic:
+        """The child that ran the script ended without a result (the server is fine)."""
+        if message.get("flooded") or message.get("garbled"):
+            what = "flooded" if message.get("flooded") else "wrote its own lines on"
+            return Diagnostic(
+                stage=Stage(stage),
+                error_type="ProtocolViolation",
+                message=f"the script {what} the validator's result channel, and no result "
+                "came through",
+                hint="the script wrote on the validator's channel; remove that code.",
+            )
+        code = int(message.get("code") or 0)
         how = f"signal {-code}" if code < 0 else f"exit code {code}"
         memory = code in (-signal.SIGKILL, -signal.SIGSEGV)
         return Diagnostic(
             stage=Stage(stage),
             error_type="WorkerCrashed",
-            message=f"the process running the script died in the {stage} "
-            f"stage ({how}) without a result",
+            message=f"the process running the script died in the {stage} stage ({how}) "
+            "without a result",
             hint=(
                 "the script probably exhausted memory"
                 if memory
-                else "the script ended its own process or flooded its channel"
+                else "the script ended its own process"
             ),
         )
 

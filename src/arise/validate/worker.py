@@ -22,6 +22,7 @@ import os
 import random
 import re
 import shutil
+import signal
 import sys
 import tempfile
 import threading
@@ -29,6 +30,7 @@ import time
 import warnings
 from collections.abc import Callable
 from contextlib import redirect_stdout
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
@@ -622,31 +624,47 @@ def _preload_map(request: dict[str, Any]) -> None:
             Network.fromFile(path)
 
 
-def _relay(read_fd: int, emit: Emit) -> bool:
-    """Pass a child's stage and result messages on; returns whether a result came."""
-    got_result = False
-    buffer = b""
+@dataclass
+class _Relayed:
+    """What came from a child: whether a result did, and whether it broke the protocol."""
+
+    result: bool = False
+    garbled: bool = False  # a line that was not one of our messages
+    flooded: bool = False  # more than a message may hold without a newline
+
+
+def _relay(read_fd: int, emit: Emit) -> _Relayed:
+    """Pass a child's stage and result messages on, and note anything else it wrote."""
+    seen = _Relayed()
+    stages = {s.value for s in Stage}
+    buffer = bytearray()
     with os.fdopen(read_fd, "rb") as stream:
-        while chunk := stream.read1(65536):
+        while chunk := stream.read1(1 << 20):
+            start = len(buffer)
             buffer += chunk
-            if len(buffer) > MESSAGE_LIMIT_BYTES:
-                return got_result  # a flood: the parent sees no result and says so
-            *lines, buffer = buffer.split(b"\n")
+            if buffer.find(b"\n", start) < 0:
+                if len(buffer) > MESSAGE_LIMIT_BYTES:
+                    seen.flooded = True
+                    return seen
+                continue
+            *lines, rest = bytes(buffer).split(b"\n")
+            buffer = bytearray(rest)
             for line in lines:
                 try:
                     message = json.loads(line)
                 except ValueError:
+                    seen.garbled = True
                     continue
-                if not isinstance(message, dict) or got_result:
-                    continue
-                if message.get("event") == "stage" and message.get("stage") in {
-                    s.value for s in Stage
-                }:
+                if not isinstance(message, dict) or seen.result:
+                    seen.garbled = True
+                elif message.get("event") == "stage" and message.get("stage") in stages:
                     emit({"event": "stage", "stage": message["stage"]})
                 elif message.get("event") == "result" and isinstance(message.get("result"), dict):
                     emit(message)
-                    got_result = True
-    return got_result
+                    seen.result = True
+                else:
+                    seen.garbled = True
+    return seen
 
 
 def _child(request: dict[str, Any], write_fd: int, scratch: Path, closing: list[int]) -> None:
@@ -684,11 +702,15 @@ def _serve_one(request: dict[str, Any], emit: Emit, scratch: Path, protocol_fd: 
         finally:
             os._exit(0)
     os.close(write_fd)
-    got_result = _relay(read_fd, emit)
+    seen = _relay(read_fd, emit)
+    if seen.flooded:
+        os.kill(pid, signal.SIGKILL)  # a nested domain may be signalled from outside
     _, status = os.waitpid(pid, 0)
-    if not got_result:
+    if not seen.result:
         code = -os.WTERMSIG(status) if os.WIFSIGNALED(status) else os.WEXITSTATUS(status)
-        emit({"event": "child_died", "code": code})
+        emit(
+            {"event": "child_died", "code": code, "flooded": seen.flooded, "garbled": seen.garbled}
+        )
 
 
 def main() -> None:
