@@ -158,3 +158,16 @@ WEATHER_FIELDS: tuple[str, ...] = (
     "dust_storm",
 )
 DEFAULT_WEATHER = "ClearNoon"
+
+
+#: The paper's eight scenario categories, in the order of its Table I.
+PAPER_CATEGORIES: tuple[str, ...] = (
+    "straight_obstacle",
+    "turning_obstacle",
+    "lane_changing",
+    "vehicle_passing",
+    "red_light_running",
+    "unprotected_left_turn",
+    "right_turn",
+    "crossing_negotiation",
+)

@@ -23,7 +23,7 @@ from arise.evaluate.fidelity import (
 )
 from arise.validate.facts import ego_pair_facts, find_collisions
 from arise.validate.types import AgentTrace, CheckResult, SimulationFacts, TracePoint
-from arise.vocabulary import ACTOR_CLASSES, PROP_CLASSES
+from arise.vocabulary import ACTOR_CLASSES, PAPER_CATEGORIES, PROP_CLASSES
 
 # Scenic's frame: heading 0 faces +y, angles grow counter-clockwise, so the ego at the
 # origin facing +y has its left at -x and its right at +x.
@@ -424,16 +424,7 @@ def test_the_three_dev_sets_load_and_validate() -> None:
 def test_the_short_set_covers_the_papers_eight_categories_and_rarely_states_weather() -> None:
     short = load_devset(DEVSET_DIR / DEVSET_FILES[DevSet.SHORT])
     categories = Counter(item.category for item in short)
-    assert set(categories) == {
-        "straight_obstacle",
-        "turning_obstacle",
-        "lane_changing",
-        "vehicle_passing",
-        "red_light_running",
-        "unprotected_left_turn",
-        "right_turn",
-        "crossing_negotiation",
-    }
+    assert set(categories) == set(PAPER_CATEGORIES)
     assert min(categories.values()) >= 4
     assert sum(item.truth.weather is not None for item in short) < len(short) / 4
     sides = {actor.start for item in short for actor in item.truth.actors}

@@ -5,6 +5,7 @@ from __future__ import annotations
 from arise.kb.loader import load_kb
 from arise.kb.plan import plan_validation
 from arise.kb.runner import builtin_maps
+from arise.vocabulary import PAPER_CATEGORIES
 
 KB = load_kb(strict=True)
 
@@ -30,14 +31,7 @@ REQUIRED_BEHAVIORS = [
 
 # The paper's eight categories and the extra situations, each as tags some entry carries.
 REQUIRED_TAGS = [
-    "straight_obstacle",
-    "turning_obstacle",
-    "lane_changing",
-    "vehicle_passing",
-    "red_light_running",
-    "unprotected_left_turn",
-    "right_turn",
-    "crossing_negotiation",
+    *PAPER_CATEGORIES,
     "highway",
     "cyclist",
     "motorcycle",

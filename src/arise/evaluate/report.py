@@ -14,22 +14,14 @@ from arise.evaluate.metrics import METRICS, Group, by_category, categories, grou
 from arise.evaluate.records import RunRecord
 from arise.generate.outputs import write_atomic
 from arise.validate.types import confinement_summary
+from arise.vocabulary import PAPER_CATEGORIES
 
 # Rows of the main table: (metric, "pass" column as the paper prints it).
 TABLE_METRICS = [("ESR single", "single"), ("ESR total", "total"), ("RCR", "total")]
 COST_METRICS = ["LLM calls / exec", "tokens / exec", "seconds / exec", "median s (exec)"]
 QUALITY_METRICS = ["fidelity", "conformity", "SCS"]
 CRITICALITY_METRICS = ["collision rate", "min distance (m)", "min TTC (s)", "route completion"]
-PAPER_ORDER = [
-    "straight_obstacle",
-    "turning_obstacle",
-    "lane_changing",
-    "vehicle_passing",
-    "red_light_running",
-    "unprotected_left_turn",
-    "right_turn",
-    "crossing_negotiation",
-]
+PAPER_ORDER = list(PAPER_CATEGORIES)
 
 
 @dataclass(frozen=True)
