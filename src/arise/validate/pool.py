@@ -127,7 +127,7 @@ class Worker:
         )
         self.task_limit = limit_tasks(self.process.pid) if confine else None
         self.checks_done = 0
-        self._buffer = b""
+        self._buffer = bytearray()
         try:
             message = self._read_message(time.monotonic() + READY_TIMEOUT)
         except WorkerDied:
@@ -162,26 +162,16 @@ class Worker:
         """
         assert self.process.stdout is not None
         fd = self.process.stdout.fileno()
-        while b"\n" not in self._buffer:
+        watched, searched = 0.0, 0
+        while (end := self._buffer.find(b"\n", searched)) < 0:
+            searched = len(self._buffer)
             remaining = deadline - time.monotonic()
             if remaining <= 0:
                 return None
             ready, _, _ = select.select([fd], [], [], min(remaining, 0.5))
-            if count_tasks(self.process.pid) > MAX_TASKS:
-                raise WorkerDied(
-                    self._refused(
-                        "ProcessLimitExceeded",
-                        f"the script started more than {MAX_TASKS} threads or processes",
-                    )
-                )
-            if _folder_bytes(self.scratch) > SCRATCH_QUOTA_BYTES:
-                raise WorkerDied(
-                    self._refused(
-                        "DiskQuotaExceeded",
-                        f"the script wrote more than "
-                        f"{SCRATCH_QUOTA_BYTES // 2**20} MB into its scratch folder",
-                    )
-                )
+            if time.monotonic() - watched >= 0.5:  # not on every chunk of a long result
+                watched = time.monotonic()
+                self._watch_limits()
             if not ready:
                 continue
             chunk = os.read(fd, 65536)
@@ -192,7 +182,8 @@ class Worker:
                 raise WorkerDied(
                     self._refused("ProtocolViolation", "the worker flooded its result channel")
                 )
-        line, self._buffer = self._buffer.split(b"\n", 1)
+        line = bytes(self._buffer[:end])
+        del self._buffer[: end + 1]
         try:
             message = json.loads(line)
         except ValueError:
@@ -205,6 +196,24 @@ class Worker:
         if not isinstance(message, dict):
             raise WorkerDied(self._refused("ProtocolViolation", "malformed worker message"))
         return message
+
+    def _watch_limits(self) -> None:
+        """Stop a worker past its task or scratch limits (where the kernel cannot)."""
+        if count_tasks(self.process.pid) > MAX_TASKS:
+            raise WorkerDied(
+                self._refused(
+                    "ProcessLimitExceeded",
+                    f"the script started more than {MAX_TASKS} threads or processes",
+                )
+            )
+        if _folder_bytes(self.scratch) > SCRATCH_QUOTA_BYTES:
+            raise WorkerDied(
+                self._refused(
+                    "DiskQuotaExceeded",
+                    f"the script wrote more than "
+                    f"{SCRATCH_QUOTA_BYTES // 2**20} MB into its scratch folder",
+                )
+            )
 
     def _refused(self, error_type: str, message: str) -> Diagnostic:
         self.kill()
