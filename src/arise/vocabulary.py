@@ -114,6 +114,15 @@ class EgoManeuver(StrEnum):
     CHANGE_LANE = "change_lane"
 
 
+class AdversaryManeuver(StrEnum):
+    """Which way the adversary goes through a junction, when the description says so."""
+
+    UNSTATED = "unstated"
+    STRAIGHT = "straight"
+    TURN_LEFT = "turn_left"
+    TURN_RIGHT = "turn_right"
+
+
 # -- weather (CARLA 0.9.16) -----------------------------------------------------------------
 
 WEATHER_PRESETS: tuple[str, ...] = (

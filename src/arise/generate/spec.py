@@ -14,6 +14,7 @@ from pydantic import BaseModel, Field, field_validator
 from arise.vocabulary import (
     DEFAULT_WEATHER,
     WEATHER_PRESETS,
+    AdversaryManeuver,
     AdversaryType,
     EgoManeuver,
     RelativePosition,
@@ -21,6 +22,7 @@ from arise.vocabulary import (
 )
 
 __all__ = [
+    "AdversaryManeuver",
     "AdversaryType",
     "EgoManeuver",
     "RelativePosition",
@@ -56,6 +58,10 @@ class ScenarioSpec(BaseModel):
     geometry: str = Field(description="the road layout and the ego's route, in words")
     spawn_position: RelativePosition
     spawn: str = Field(description="where the adversary starts relative to the ego, in words")
+    adversary_maneuver: AdversaryManeuver = Field(
+        default=AdversaryManeuver.UNSTATED,
+        description="which way the adversary goes through a junction, if the text says",
+    )
     participants: list[str] = Field(
         default_factory=list, description="other road users and objects, one per item"
     )
