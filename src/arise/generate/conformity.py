@@ -5,14 +5,15 @@ adversary, its class, where it started and which way it went, the ego's maneuver
 junction steps, the weather parameter, the other objects) and are compared with the spec.
 A fact that cannot be read (no trace, a weather dict) is "unknown" and does not count.
 
-It lives in the generator because the optional semantic gate (`semantic_gate`) makes a
-script that runs but contradicts the spec fail and be repaired; the evaluation reads the
-same check.
+It lives in the generator because the semantic gate (`semantic_gate`, on by default in
+arise mode) makes a script that runs but contradicts the spec fail and be repaired; the
+evaluation reads the same check.
 """
 
 from __future__ import annotations
 
 import math
+import re
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -33,14 +34,56 @@ TURN_DEGREES = 45.0
 LANE_CHANGE_METRES = 2.2
 MOVED_METRES = 1.5
 REACH_MARGIN = 1.0  # metres beyond the two half-widths that still count as "in the path"
-# Checks the optional semantic gate enforces, and the script section that decides each.
+# A roadside adversary (a parked car, a bystander) may do its part without entering the path.
+ROADSIDE = frozenset({RelativePosition.ROADSIDE_LEFT, RelativePosition.ROADSIDE_RIGHT})
+# Checks the semantic gate enforces, and the script section that decides each.
 GATED_CHECKS = {
     "adversary_type": "SPAWN",
     "spawn_position": "SPAWN",
     "ego_maneuver": "GEOMETRY",
     "road_type": "GEOMETRY",
+    "reaches_ego_path": "BEHAVIOR",
+    "participants": "MISC",
+    "extra_actors": "MISC",
     "weather": "WEATHER",
 }
+# Words that make one participant stand for several objects ("parked cars", "two vans").
+_NUMBERS = {
+    "two": 2,
+    "three": 3,
+    "four": 4,
+    "five": 5,
+    "six": 6,
+    "seven": 7,
+    "eight": 8,
+    "nine": 9,
+    "ten": 10,
+    "pair": 2,
+    "couple": 2,
+}
+_GROUP_WORDS = {
+    "several",
+    "some",
+    "many",
+    "few",
+    "group",
+    "groups",
+    "crowd",
+    "traffic",
+    "row",
+    "line",
+    "queue",
+    "platoon",
+    "convoy",
+    "multiple",
+    "other",
+    "others",
+}
+_NOT_PLURAL = {"bus", "gas", "its", "this", "is", "was", "has", "as", "us", "plus", "campus"}
+# The noun phrase ends where a place or a relative clause begins ("cars parked on the ...").
+_PHRASE_END = re.compile(
+    r"\b(?:on|at|in|near|by|behind|beside|next|along|from|with|that|which|who)\b"
+)
 
 
 @dataclass(frozen=True)
@@ -49,6 +92,9 @@ class ConformityCheck:
     expected: str
     observed: str
     ok: bool | None  # None: the fact could not be read
+    # False: counted in the score but never failed by the gate (e.g. a roadside actor that
+    # may stay at the roadside need not reach the ego's path).
+    gated: bool = True
 
     def as_dict(self) -> dict[str, Any]:
         return {
@@ -214,6 +260,36 @@ def _reach(ego: AgentTrace, adversary: AgentTrace) -> float | None:
     return min(path.distance(Point(p.x, p.y)) for p in adversary.trajectory)
 
 
+def participant_allowance(text: str) -> int | None:
+    """How many objects of the trace one participant text may stand for: its number
+    ("two parked cars": 2), any number for a plural or a group ("parked cars", None), else 1."""
+    words = re.findall(r"[a-z0-9]+", text.lower())
+    for word in words:
+        if word.isdigit() and int(word) > 0:
+            return int(word)
+        if word in _NUMBERS:
+            return _NUMBERS[word]
+    if any(word in _GROUP_WORDS for word in words):
+        return None
+    head = _PHRASE_END.split(text.lower(), maxsplit=1)[0]
+    plural = [
+        w
+        for w in re.findall(r"[a-z]+", head)
+        if len(w) > 3
+        and w.endswith("s")
+        and not w.endswith(("ss", "us", "is"))
+        and w not in _NOT_PLURAL
+    ]
+    return None if plural else 1
+
+
+def actor_counts(participants: list[str]) -> tuple[int, int | None]:
+    """Fewest and most other objects the participants account for (None: no upper bound)."""
+    allowances = [participant_allowance(text) for text in participants]
+    most = None if None in allowances else sum(a or 0 for a in allowances)
+    return len(participants), most
+
+
 # -- the comparison -------------------------------------------------------------------------
 
 
@@ -266,6 +342,7 @@ def check_conformity(
                 f"within {limit:.1f} m of the ego's path",
                 "unknown" if reach is None else f"{reach:.1f} m",
                 None if reach is None else reach <= limit,
+                gated=spec.spawn_position not in ROADSIDE,
             )
         )
     weather = facts.params.get("weather")
@@ -279,15 +356,36 @@ def check_conformity(
         )
     )
     others = [a for a in facts.agents if not a.is_ego and a is not adversary]
+    fewest, most = actor_counts(spec.participants)
     add(
         ConformityCheck(
             "participants",
-            f"at least {len(spec.participants)} other object(s)",
+            f"at least {fewest} other object(s)",
             f"{len(others)}",
-            len(others) >= len(spec.participants),
+            len(others) >= fewest,
+        )
+    )
+    add(
+        ConformityCheck(
+            "extra_actors",
+            _allowed(most),
+            _describe_others(others),
+            True if most is None else len(others) <= most,
         )
     )
     return result
+
+
+def _allowed(most: int | None) -> str:
+    if most is None:
+        return "any number of other objects"
+    return "no other object" if most == 0 else f"at most {most} other object(s)"
+
+
+def _describe_others(others: list[AgentTrace]) -> str:
+    if not others:
+        return "none"
+    return f"{len(others)}: " + ", ".join(a.name for a in others)
 
 
 def _road_check(
@@ -308,16 +406,51 @@ def _road_check(
     return ConformityCheck("road_type", road.value, observed, ego.intersection_steps == 0)
 
 
-def semantic_gate(result: CheckResult, conformity: Conformity) -> CheckResult:
-    """A script that runs but contradicts the spec fails, naming the section to change."""
-    wrong = [c for c in conformity.checks if c.ok is False and c.name in GATED_CHECKS]
-    if not wrong:
+@dataclass(frozen=True)
+class Contradiction:
+    """One gated fact where the trace contradicts the spec, and the section that decides it."""
+
+    check: str
+    expected: str
+    observed: str
+    section: str
+
+    def text(self) -> str:
+        return f"{self.check}: expected {self.expected}, observed {self.observed}"
+
+    def as_dict(self) -> dict[str, str]:
+        return {
+            "check": self.check,
+            "expected": self.expected,
+            "observed": self.observed,
+            "section": self.section,
+        }
+
+
+def contradictions(conformity: Conformity) -> list[Contradiction]:
+    """The gated checks that fail (unknown facts never count against a script)."""
+    return [
+        Contradiction(c.name, c.expected, c.observed, GATED_CHECKS[c.name])
+        for c in conformity.checks
+        if c.ok is False and c.gated and c.name in GATED_CHECKS
+    ]
+
+
+def gate_result(result: CheckResult, found: list[Contradiction]) -> CheckResult:
+    """A result that ran but has contradictions becomes a SEMANTIC failure naming the
+    section of the first; anything else is returned as it is."""
+    if not result.ok or not found:
         return result
     diagnostic = Diagnostic(
         stage=Stage.SEMANTIC,
         error_type="ConformityMismatch",
-        message="; ".join(f"{c.name}: expected {c.expected}, observed {c.observed}" for c in wrong),
-        section=GATED_CHECKS[wrong[0].name],
+        message="; ".join(c.text() for c in found),
+        section=found[0].section,
         hint="the script runs but does not do what the description says",
     )
     return result.model_copy(update={"ok": False, "diagnostic": diagnostic})
+
+
+def semantic_gate(result: CheckResult, conformity: Conformity) -> CheckResult:
+    """A script that runs but contradicts the spec fails, naming the section to change."""
+    return gate_result(result, contradictions(conformity))

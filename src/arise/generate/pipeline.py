@@ -10,13 +10,18 @@ from typing import Any
 
 from arise.errors import AriseError
 from arise.generate.assemble import assemble, declared_params, tune_params
-from arise.generate.conformity import Conformity, check_conformity, semantic_gate
+from arise.generate.conformity import (
+    Conformity,
+    Contradiction,
+    check_conformity,
+    contradictions,
+)
 from arise.generate.events import Progress, RunFinished, RunStage, StageStarted, ignore
 from arise.generate.extract import check_description, extract_spec
 from arise.generate.hints import apply_hints, keep_stated_requirements
 from arise.generate.options import GenerateOptions, Mode
 from arise.generate.outputs import write_attempt, write_report, write_script
-from arise.generate.repair import RepairContext, Validate, repair_loop
+from arise.generate.repair import GatedValidate, RepairContext, Validate, repair_loop
 from arise.generate.retrieve import Retrieval, retrieve
 from arise.generate.rules import RuleContext
 from arise.generate.run import Attempt, AttemptKind, Generation, Outcome, RunStatus
@@ -236,19 +241,22 @@ class Generator:
 
     def validator(self, out_dir: Path | None, spec: ScenarioSpec | None) -> Validate:
         """How the repair loop validates a script of this run: the check, then the semantic
-        gate when it is on."""
+        gate when it is on (arise mode, unless --no-semantic-gate)."""
         options = self.check_options(str(out_dir / "scene.png") if out_dir else None)
 
         def validate(script: str) -> CheckResult:
             if self._checker is not None:
-                result = self._checker(script, options)
-            else:
-                result = check_text(script, options, pool=self.pool, registry=self.registry)
-            if result.ok and self.options.semantic_gate and spec is not None:
-                result = semantic_gate(result, self.conformity_of(spec, result))
-            return result
+                return self._checker(script, options)
+            return check_text(script, options, pool=self.pool, registry=self.registry)
 
-        return validate
+        if not self.options.gate_on or spec is None:
+            return validate
+        gated_spec = spec
+
+        def gate(result: CheckResult) -> list[Contradiction]:
+            return contradictions(self.conformity_of(gated_spec, result))
+
+        return GatedValidate(validate, gate)
 
     def _run(self, run: Generation, emit: Progress) -> Outcome:
         """Modules A-C fill in the run's spec, retrieval and draft; the repair loop adds
@@ -327,8 +335,9 @@ class Generator:
             last = run.attempts[-1]
             if last.script:
                 write_attempt(run.out_dir, last.index, last.script)
-            if final and last.script:
-                write_script(run.out_dir, last.script, last.ok)
+            result = run.final_attempt  # the last, or the kept one that ran (semantic gate)
+            if final and result is not None and result.script:
+                write_script(run.out_dir, result.script, result.executed)
         write_report(run.out_dir, run.report())
 
 

@@ -2,7 +2,10 @@
 
 Each failed check is routed by its diagnostic: first a rule for mechanical errors, then a
 model repair of the failing section (the section back, never the whole script), and as a
-last resort the next retrieved candidate for that section. Every attempt is kept.
+last resort the next retrieved candidate for that section. A script that runs but fails
+the semantic gate goes the other way round: first a candidate that fits, then a model fix.
+Every attempt is kept; when the gate is never met, the run keeps the script that ran with
+the fewest contradictions.
 """
 
 from __future__ import annotations
@@ -13,6 +16,7 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 
 from arise.generate.assemble import Draft, apply_params
+from arise.generate.conformity import Contradiction, gate_result
 from arise.generate.events import AttemptChecked, Progress, RunStage, StageStarted, ignore
 from arise.generate.retrieve import Retrieval
 from arise.generate.rules import RuleContext, apply_rules
@@ -31,7 +35,26 @@ _CODE_BLOCK = re.compile(r"```(?:scenic|python)?\s*\n(.*?)```", re.S)
 MODEL_TRIES_PER_SECTION = 2
 
 Validate = Callable[[str], CheckResult]
+Gate = Callable[[CheckResult], list[Contradiction]]
 OnAttempt = Callable[[Attempt], None]
+
+
+@dataclass(frozen=True)
+class GatedValidate:
+    """A validator with the semantic gate: `check` runs a script, `gate` lists what a script
+    that ran contradicts. Called, it gives the gated result; the loop calls the two parts
+    itself to keep the contradictions as data on the attempt."""
+
+    check: Validate
+    gate: Gate
+
+    def validate(self, script: str) -> tuple[CheckResult, list[Contradiction]]:
+        result = self.check(script)
+        found = self.gate(result) if result.ok else []
+        return gate_result(result, found), found
+
+    def __call__(self, script: str) -> CheckResult:
+        return self.validate(script)[0]
 
 
 @dataclass(frozen=True)
@@ -144,65 +167,109 @@ def llm_repair(
 
 
 def swap_candidate(context: RepairContext, section: str | None) -> RepairStep:
-    """Replace the entry of the failing section by the next compatible candidate."""
+    """Replace the entry of the failing section by the next compatible candidate (or,
+    when none is left, another section's)."""
     order = [section] if section else []
     order += [
         s for s in ("SPAWN", "BEHAVIOR", "GEOMETRY", "MISC", "REQUIREMENTS") if s not in order
     ]
-    draft = context.draft
     for name in order:
-        component = SECTION_COMPONENT.get(name)
-        if component is None or component is Component.WEATHER:
-            continue
-        current = [e for e in draft.entries if e.component is component]
-        if component in (Component.MISC, Component.REQUIREMENTS):
-            if not current:
-                continue
-            entries = [e for e in draft.entries if e is not current[-1]]
-            note = f"dropped {current[-1].id}"
-            replacement: Entry | None = None
-        else:
-            tried = context.tried.setdefault(name, {e.id for e in current})
-            others = [e for e in draft.entries if e.component is not component]
-            replacement = next(
-                (
-                    c
-                    for c in context.retrieval.candidates.get(component, [])
-                    if c.id not in tried
-                    and not composition_problems([*others, c], draft.adversary_class)
-                ),
-                None,
-            )
-            if replacement is None:
-                continue
-            tried.add(replacement.id)
-            entries = [replacement if e.component is component else e for e in draft.entries]
-            note = f"{current[0].id if current else '-'} -> {replacement.id}"
-        map_name = pick_map(entries, context.maps) if context.maps else draft.map_name
-        if map_name is None:
-            continue
-        try:
-            script = compose(
-                entries, draft.adversary_class, map_name, description=context.description
-            )
-        except ComposeError:
-            continue
-        new_draft = Draft(
-            script=apply_params(script, draft.params),
-            entries=entries,
-            map_name=map_name,
-            adversary_class=draft.adversary_class,
-            params=draft.params,
-        )
-        return RepairStep(new_draft.script, AttemptKind.SWAP, note, draft=new_draft)
+        step = swap_section(context, name)
+        if step is not None:
+            return step
     return RepairStep(None, AttemptKind.SWAP, "no other candidate fits")
 
 
-def repair_once(context: RepairContext, script: str, diagnostic: Diagnostic) -> RepairStep:
-    """One repair step, routed by the diagnostic: rule, else model, else swap."""
+def swap_section(context: RepairContext, name: str) -> RepairStep | None:
+    """The next compatible candidate for one section (MISC and REQUIREMENTS: drop their
+    last entry); None when nothing is left for it."""
+    component = SECTION_COMPONENT.get(name)
+    if component is None or component is Component.WEATHER:
+        return None
+    draft = context.draft
+    current = [e for e in draft.entries if e.component is component]
+    if component in (Component.MISC, Component.REQUIREMENTS):
+        if not current:
+            return None
+        entries = [e for e in draft.entries if e is not current[-1]]
+        note = f"dropped {current[-1].id}"
+    else:
+        tried = context.tried.setdefault(name, {e.id for e in current})
+        others = [e for e in draft.entries if e.component is not component]
+        replacement: Entry | None = next(
+            (
+                c
+                for c in context.retrieval.candidates.get(component, [])
+                if c.id not in tried
+                and not composition_problems([*others, c], draft.adversary_class)
+            ),
+            None,
+        )
+        if replacement is None:
+            return None
+        tried.add(replacement.id)
+        entries = [replacement if e.component is component else e for e in draft.entries]
+        note = f"{current[0].id if current else '-'} -> {replacement.id}"
+    map_name = pick_map(entries, context.maps) if context.maps else draft.map_name
+    if map_name is None:
+        return None
+    try:
+        script = compose(entries, draft.adversary_class, map_name, description=context.description)
+    except ComposeError:
+        return None
+    new_draft = Draft(
+        script=apply_params(script, draft.params),
+        entries=entries,
+        map_name=map_name,
+        adversary_class=draft.adversary_class,
+        params=draft.params,
+    )
+    return RepairStep(new_draft.script, AttemptKind.SWAP, note, draft=new_draft)
+
+
+def semantic_repair(
+    context: RepairContext, script: str, diagnostic: Diagnostic, found: list[Contradiction]
+) -> RepairStep:
+    """A script that runs but contradicts the description: first a candidate that fits for a
+    section a contradiction names, and only when none is left, a model fix of that section
+    told what the trace showed. Missing actors are never fixed by dropping one."""
+    named = [c.section for c in found] or [diagnostic.section or ""]
+    sections = [s for s in dict.fromkeys(named) if s in SECTION_COMPONENT]
+    for section in sections:
+        checks = {c.check for c in found if c.section == section}
+        if checks == {"participants"}:
+            continue  # a swap of MISC drops an object: it cannot add the missing one
+        step = swap_section(context, section)
+        if step is not None:
+            return step
+    usage = Usage()
+    for section in sections:
+        own = [c for c in found if c.section == section]
+        told = diagnostic.model_copy(
+            update={
+                "section": section,
+                "message": "; ".join(c.text() for c in own) or diagnostic.message,
+            }
+        )
+        while context.model_may_repair(section, told):
+            step = llm_repair(context, script, told, section)
+            usage = usage + step.usage
+            if step.script is not None:
+                return RepairStep(step.script, AttemptKind.LLM, step.detail, usage)
+            context.count_model_failure(section)
+    return RepairStep(None, AttemptKind.SWAP, "no other candidate fits", usage)
+
+
+def repair_once(
+    context: RepairContext,
+    script: str,
+    diagnostic: Diagnostic,
+    contradictions: list[Contradiction] | None = None,
+) -> RepairStep:
+    """One repair step, routed by the diagnostic: rule, else model, else swap; for a script
+    that runs but fails the semantic gate, swap, else model."""
     if diagnostic.stage is Stage.SEMANTIC:
-        # The script runs: editing numbers will not change who or where; another entry will.
-        return swap_candidate(context, guilty_section(diagnostic))
+        return semantic_repair(context, script, diagnostic, contradictions or [])
     fix = apply_rules(diagnostic, script, context.rules)
     if fix is not None:
         return RepairStep(fix.text, AttemptKind.RULE, f"{fix.rule}: {fix.note}")
@@ -232,9 +299,13 @@ def run_attempt(
     script: str,
     validate: Validate,
     usage: Usage,
+    repair_seconds: float = 0.0,
 ) -> Attempt:
     started = time.perf_counter()
-    result = validate(script)
+    if isinstance(validate, GatedValidate):
+        result, found = validate.validate(script)
+    else:
+        result, found = validate(script), []
     return Attempt(
         index=index,
         kind=kind,
@@ -246,7 +317,26 @@ def run_attempt(
         check_seconds=time.perf_counter() - started,
         llm_usage=usage,
         check=result,
+        contradictions=found,
+        repair_seconds=repair_seconds,
     )
+
+
+def best_executed(attempts: list[Attempt]) -> Attempt | None:
+    """The attempt that ran with the fewest contradictions (the earliest of equals)."""
+    ran = [a for a in attempts if a.executed]
+    return min(ran, key=lambda a: (len(a.contradictions), a.index)) if ran else None
+
+
+def settle(run: Generation, reason: str | None) -> Outcome:
+    """How a run ends when its last attempt did not pass: EXECUTED with the best script that
+    ran when one did (the gate was not met), else FAILED."""
+    best = best_executed(run.attempts)
+    if best is None:
+        return Outcome(RunStatus.FAILED, reason)
+    left = len(best.contradictions)
+    note = f"the semantic gate was not met: kept attempt {best.index}, {left} contradiction(s)"
+    return Outcome(RunStatus.EXECUTED, f"{reason}; {note}" if reason else note, final=best.index)
 
 
 def repair_loop(
@@ -294,16 +384,18 @@ def repair_loop(
         )
     )
     if context is None:
-        return Outcome(RunStatus.EXECUTED if attempt.ok else RunStatus.FAILED)
+        return Outcome(RunStatus.EXECUTED) if attempt.ok else settle(run, None)
     while not attempt.ok and len(run.attempts) <= max_repairs:
         diagnostic = attempt.diagnostic
         assert diagnostic is not None
         emit(StageStarted(RunStage.REPAIR, attempt=len(run.attempts), error=diagnostic.one_line()))
-        step = repair_once(context, attempt.script, diagnostic)
+        started = time.perf_counter()
+        step = repair_once(context, attempt.script, diagnostic, attempt.contradictions)
+        repair_seconds = time.perf_counter() - started
         if step.model_failed_on is not None:
             context.count_model_failure(step.model_failed_on)
         if step.script is None:
-            return Outcome(RunStatus.FAILED, f"no repair left for: {diagnostic.one_line()}")
+            return settle(run, f"no repair left for: {diagnostic.one_line()}")
         if step.draft is not None:
             context.draft = step.draft
             run.use_draft(step.draft)
@@ -315,6 +407,7 @@ def repair_loop(
             step.script,
             validate,
             step.usage,
+            repair_seconds,
         )
         if step.kind is AttemptKind.LLM and not attempt.ok and attempt.diagnostic is not None:
             # A model repair that did not run counts against the section now failing.
@@ -325,6 +418,4 @@ def repair_loop(
     if attempt.ok:
         return Outcome(RunStatus.EXECUTED)
     last = attempt.diagnostic
-    return Outcome(
-        RunStatus.FAILED, f"repair budget spent; last error: {last.one_line()}" if last else None
-    )
+    return settle(run, f"repair budget spent; last error: {last.one_line()}" if last else None)

@@ -14,6 +14,7 @@ from pathlib import Path
 from typing import Any
 
 from arise.generate.assemble import Draft
+from arise.generate.conformity import Contradiction
 from arise.generate.options import GenerateOptions
 from arise.generate.retrieve import Retrieval
 from arise.generate.spec import ScenarioSpec
@@ -23,7 +24,9 @@ from arise.validate.types import CheckResult, Diagnostic
 
 class RunStatus(StrEnum):
     RUNNING = "running"
-    EXECUTED = "executed"  # the final script ran (and passed the semantic gate, if on)
+    # The final script ran; whether it also agrees with the description is the run's
+    # `gate` verdict (a run is never FAILED only because the semantic gate stayed unmet).
+    EXECUTED = "executed"
     FAILED = "failed"  # no script ran within the repair budget (or the snippets did not fit)
     REFUSED = "refused"  # the description was refused before or by extraction
     PROVIDER_ERROR = "provider_error"  # the model could not be asked
@@ -36,6 +39,15 @@ class AttemptKind(StrEnum):
     RULE = "rule"  # a rule fixed a mechanical error
     LLM = "llm"  # the model rewrote the failing section
     SWAP = "swap"  # the next retrieved candidate replaced a section
+
+
+class GateVerdict(StrEnum):
+    """What the semantic gate says about a run's final script."""
+
+    OFF = "off"  # the gate was not on (baseline modes, or --no-semantic-gate)
+    PASSED = "passed"  # the final script runs and contradicts none of the gated facts
+    CONTRADICTS = "contradicts"  # it runs, but contradictions were left when repair ended
+    NOT_REACHED = "not_reached"  # no script ran, so the gate judged none
 
 
 def unified_diff(before: str, after: str) -> str:
@@ -61,6 +73,19 @@ class Attempt:
     llm_usage: Usage = field(default_factory=Usage)
     # The validator's whole answer (None when nothing was validated, e.g. a compose error).
     check: CheckResult | None = None
+    # What the semantic gate found wrong with a script that ran (empty: none, or no gate).
+    contradictions: list[Contradiction] = field(default_factory=list)
+    # Time spent making this script (a rule, a swap or a model call) before its check.
+    repair_seconds: float = 0.0
+
+    @property
+    def executed(self) -> bool:
+        """The script ran without error, whether or not it passed the semantic gate."""
+        return self.ok or bool(self.contradictions)
+
+    @property
+    def seconds(self) -> float:
+        return self.repair_seconds + self.check_seconds
 
     def as_dict(self) -> dict[str, Any]:
         return {
@@ -71,6 +96,9 @@ class Attempt:
             "diagnostic": self.diagnostic.model_dump(mode="json") if self.diagnostic else None,
             "diff": self.diff,
             "check_seconds": round(self.check_seconds, 3),
+            "repair_seconds": round(self.repair_seconds, 3),
+            "executed": self.executed,
+            "contradictions": [c.as_dict() for c in self.contradictions],
             "sandbox": self.check.sandbox.label if self.check and self.check.sandbox else None,
             "llm": self.llm_usage.as_dict(),
         }
@@ -82,6 +110,8 @@ class Outcome:
 
     status: RunStatus
     message: str | None = None
+    # The attempt whose script is the run's result (None: the last one).
+    final: int | None = None
 
 
 @dataclass
@@ -105,6 +135,8 @@ class Generation:
     out_dir: Path | None = None
     # The deterministic conformity check of the script that ran (set when the run ends).
     conformity: dict[str, Any] | None = None
+    # Index of the attempt that is the result, when it is not the last (see Outcome.final).
+    final_index: int | None = None
 
     @property
     def ok(self) -> bool:
@@ -112,16 +144,65 @@ class Generation:
 
     @property
     def first_pass_ok(self) -> bool:
-        return bool(self.attempts) and self.attempts[0].ok
+        """The first assembled script ran (ESR single); the gate's verdict is separate."""
+        return bool(self.attempts) and self.attempts[0].executed
 
     @property
     def repairs(self) -> int:
         return max(0, len(self.attempts) - 1)
 
     @property
+    def final_attempt(self) -> Attempt | None:
+        """The attempt whose script is the result: the last, unless the run kept an earlier
+        one that ran (the one with the fewest contradictions when the gate stayed unmet)."""
+        if not self.attempts:
+            return None
+        return self.attempts[-1 if self.final_index is None else self.final_index]
+
+    @property
     def final_check(self) -> CheckResult | None:
-        """The validation of the last attempt (None before anything was validated)."""
-        return self.attempts[-1].check if self.attempts else None
+        """The validation of the final attempt (None before anything was validated)."""
+        final = self.final_attempt
+        return final.check if final else None
+
+    @property
+    def gate_on(self) -> bool:
+        return self.options.gate_on
+
+    @property
+    def gate(self) -> GateVerdict:
+        final = self.final_attempt
+        if not self.gate_on:
+            return GateVerdict.OFF
+        if final is None or not final.executed or not self.ok:
+            return GateVerdict.NOT_REACHED
+        return GateVerdict.CONTRADICTS if final.contradictions else GateVerdict.PASSED
+
+    @property
+    def contradictions_left(self) -> list[Contradiction]:
+        final = self.final_attempt
+        return list(final.contradictions) if final and self.ok else []
+
+    @property
+    def gate_seconds(self) -> float:
+        """Time spent only because of the gate: every attempt after the first script that
+        ran, when that script failed the gate."""
+        first = next((a for a in self.attempts if a.executed), None)
+        if first is None or first.ok:
+            return 0.0
+        return sum(a.seconds for a in self.attempts[first.index + 1 :])
+
+    def gate_report(self) -> dict[str, Any]:
+        verdict = self.gate
+        return {
+            "on": self.gate_on,
+            "verdict": verdict.value,
+            "passed": None
+            if verdict in (GateVerdict.OFF, GateVerdict.NOT_REACHED)
+            else verdict is GateVerdict.PASSED,
+            "contradictions": [c.as_dict() for c in self.contradictions_left],
+            "seconds": round(self.gate_seconds, 3),
+        }
 
     def add_attempt(self, attempt: Attempt) -> None:
         """The one way an attempt joins the run (its index is its place in the list)."""
@@ -136,6 +217,9 @@ class Generation:
         """The one transition out of RUNNING."""
         assert self.status is RunStatus.RUNNING, f"run already ended as {self.status}"
         self.status, self.message = outcome.status, outcome.message
+        if outcome.final is not None:
+            assert 0 <= outcome.final < len(self.attempts), "the final attempt is one of them"
+            self.final_index = outcome.final
 
     def report(self) -> dict[str, Any]:
         """What report.json holds; the bench rows are read from this too."""
@@ -157,6 +241,8 @@ class Generation:
             "params": self.draft.params if self.draft else {},
             "first_pass_ok": self.first_pass_ok,
             "repairs": self.repairs,
+            "final_attempt": self.final_attempt.index if self.final_attempt else None,
+            "semantic_gate": self.gate_report(),
             "attempts": [a.as_dict() for a in self.attempts],
             "llm": self.usage.as_dict(),
             "seconds": round(self.seconds, 3),
@@ -172,9 +258,19 @@ class Generation:
 
     def summary(self) -> str:
         if self.ok:
-            how = "first try" if self.first_pass_ok else f"after {self.repairs} repair(s)"
+            how = "first try" if self.repairs == 0 else f"after {self.repairs} repair(s)"
             return (
                 f"executed {how} in {self.seconds:.0f} s, {self.usage.calls} LLM call(s), "
-                f"{self.usage.total_tokens} tokens"
+                f"{self.usage.total_tokens} tokens" + self.gate_summary()
             )
         return f"{self.status.value}: {self.message or ''}".strip()
+
+    def gate_summary(self) -> str:
+        """What the gate says, for the one-line summary ('' when it is off or passed)."""
+        left = self.contradictions_left
+        if self.gate is not GateVerdict.CONTRADICTS or not left:
+            return ""
+        final = self.final_attempt
+        kept = f" (kept attempt {final.index})" if final and final.index != self.repairs else ""
+        count = f"{len(left)} contradiction{'s' if len(left) > 1 else ''}"
+        return f"; {count} with the description left{kept}: " + "; ".join(c.text() for c in left)
