@@ -54,6 +54,8 @@ Examples:
   arise bench prompts.txt --provider openai --model gpt-4o-mini --workers 4 --judge
 
   arise bench prompts.jsonl --executor ray --workers 8
+
+  arise bench prompts.jsonl --no-semantic-gate   # measure without the semantic gate
 """
 
 REPORT_HELP = """Write the report of a benchmark database (Markdown, CSV and PNG plots).
@@ -128,8 +130,14 @@ def bench_command(
     ] = None,
     judge_model: Annotated[str | None, typer.Option(help="Model of the judge.")] = None,
     semantic_gate: Annotated[
-        bool, typer.Option("--semantic-gate", help="A script must also pass the conformity check.")
-    ] = False,
+        bool,
+        typer.Option(
+            "--semantic-gate/--no-semantic-gate",
+            help="arise-mode runs must also agree with the description or be repaired "
+            "(on by default; the baselines never gate). The report shows the seconds it "
+            "cost. Example: arise bench prompts.jsonl --no-semantic-gate",
+        ),
+    ] = True,
     map_dir: Annotated[str | None, typer.Option(help="Extra maps (e.g. CARLA towns).")] = None,
     replay: ReplayOption = None,
     cache: Annotated[

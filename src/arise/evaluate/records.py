@@ -93,6 +93,10 @@ class RunRecord:
     sandbox: str | None = None
     # Facts read from the trace against the prompt's hand-written truth (evaluate.fidelity).
     fidelity: dict[str, Any] | None = None
+    # The semantic gate's verdict on the final script ("off", "passed", "contradicts",
+    # "not_reached") and the seconds of attempts made only because of it.
+    gate: str = "off"
+    gate_seconds: float = 0.0
 
     def __post_init__(self) -> None:
         self.status = RunStatus(self.status)  # also when read as text
@@ -116,6 +120,10 @@ class RunRecord:
         return float(value) if isinstance(value, int | float) else None
 
     @property
+    def gate_on(self) -> bool:
+        return self.gate != "off"
+
+    @property
     def conformity_score(self) -> float | None:
         value = (self.conformity or {}).get("score")
         return float(value) if isinstance(value, int | float) else None
@@ -134,6 +142,7 @@ class RunRecord:
     ) -> RunRecord:
         """The row of a run from its report (see `Generation.report`)."""
         llm = report.get("llm") or {}
+        gate = report.get("semantic_gate") or {}
         return cls(
             task=task,
             status=report["status"],
@@ -150,6 +159,8 @@ class RunRecord:
             criticality=criticality,
             attempts=[AttemptRecord.from_report(a) for a in report["attempts"]],
             sandbox=_sandbox_label(report.get("sandbox")),
+            gate=gate.get("verdict", "off"),
+            gate_seconds=gate.get("seconds", 0.0),
         )
 
     @classmethod

@@ -10,7 +10,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
-from arise.evaluate.metrics import METRICS, Group, by_category, categories, groups
+from arise.evaluate.metrics import METRICS, Group, Metric, by_category, categories, groups
 from arise.evaluate.records import RunRecord
 from arise.generate.outputs import write_atomic
 from arise.validate.types import confinement_summary
@@ -18,10 +18,36 @@ from arise.vocabulary import PAPER_CATEGORIES
 
 # Rows of the main table: (metric, "pass" column as the paper prints it).
 TABLE_METRICS = [("ESR single", "single"), ("ESR total", "total"), ("RCR", "total")]
-COST_METRICS = ["LLM calls / exec", "tokens / exec", "seconds / exec", "median s (exec)"]
-QUALITY_METRICS = ["fidelity", "conformity", "SCS"]
+COST_METRICS = [
+    "LLM calls / exec",
+    "tokens / exec",
+    "seconds / exec",
+    "median s (exec)",
+    "gate seconds / run",
+]
+QUALITY_METRICS = ["fidelity", "conformity", "gate met", "SCS"]
 CRITICALITY_METRICS = ["collision rate", "min distance (m)", "min TTC (s)", "route completion"]
 PAPER_ORDER = list(PAPER_CATEGORIES)
+
+
+def gate_seconds_per_run(runs: Sequence[RunRecord]) -> float | None:
+    """Mean seconds a gated run spent on attempts made only because of the semantic gate."""
+    gated = [r.gate_seconds for r in runs if r.gate_on]
+    return sum(gated) / len(gated) if gated else None
+
+
+def gate_met(runs: Sequence[RunRecord]) -> float | None:
+    """Share of executed gated runs whose final script agrees with the spec."""
+    judged = [r for r in runs if r.ok and r.gate in ("passed", "contradicts")]
+    return sum(r.gate == "passed" for r in judged) / len(judged) if judged else None
+
+
+# The paper's metrics and the semantic gate's own two.
+REPORT_METRICS: dict[str, Metric] = {
+    **METRICS,
+    "gate seconds / run": gate_seconds_per_run,
+    "gate met": gate_met,
+}
 
 
 @dataclass(frozen=True)
@@ -40,11 +66,15 @@ def ordered_categories(runs: Sequence[RunRecord]) -> list[str]:
 def _format(value: float | None, metric: str) -> str:
     if value is None or (isinstance(value, float) and math.isnan(value)):
         return "N/A"
-    if metric in ("SCS", "conformity", "collision rate", "route completion") or metric.startswith(
-        "ESR"
-    ):
+    if metric in (
+        "SCS",
+        "conformity",
+        "gate met",
+        "collision rate",
+        "route completion",
+    ) or metric.startswith("ESR"):
         return f"{value:.3f}"
-    if metric.startswith(("tokens", "seconds", "median")):
+    if metric.startswith(("tokens", "seconds", "median", "gate seconds")):
         return f"{value:.0f}"
     return f"{value:.2f}"
 
@@ -56,7 +86,7 @@ def cells(runs: Sequence[RunRecord], metrics: Sequence[str]) -> list[Cell]:
         for group, members in groups(runs).items():
             if metric == "RCR" and group.mode != "arise":
                 continue  # no repair loop, no RCR (the paper leaves the row out)
-            values, average = by_category(members, METRICS[metric], names)
+            values, average = by_category(members, REPORT_METRICS[metric], names)
             found.append(Cell(metric, group, values, average))
     return found
 
@@ -119,6 +149,8 @@ def runs_csv(runs: Sequence[RunRecord]) -> str:
             "tokens",
             "seconds",
             "conformity",
+            "gate",
+            "gate_seconds",
             "scs",
             "collision",
             "min_distance",
@@ -143,6 +175,8 @@ def runs_csv(runs: Sequence[RunRecord]) -> str:
                 r.tokens,
                 round(r.seconds, 1),
                 r.conformity_score,
+                r.gate,
+                round(r.gate_seconds, 1),
                 r.scs,
                 crit.get("collision"),
                 crit.get("min_distance"),
@@ -231,8 +265,10 @@ def markdown(runs: Sequence[RunRecord], title: str, meta: dict[str, object]) -> 
         "closeness) that the trace bears out (N/A: the prompt has no truth). conformity: "
         "share of the deterministic facts (adversary class, ego maneuver, road, start "
         "position, reach of the ego's path, weather, other objects) that agree with the "
-        "model's own extracted spec, a weaker, second number. SCS: the LLM judge's score "
-        "(N/A when not judged). All over executed runs.",
+        "model's own extracted spec, a weaker, second number. gate met: share of the "
+        "scripts the semantic gate judged that agree with the spec; the others ran but "
+        "kept contradictions when the repair budget was spent (N/A: gate off). SCS: the "
+        "LLM judge's score (N/A when not judged). All over executed runs.",
         "",
         _markdown_table(runs, QUALITY_METRICS),
         "",
@@ -241,7 +277,9 @@ def markdown(runs: Sequence[RunRecord], title: str, meta: dict[str, object]) -> 
         "## Cost per executable script",
         "",
         "What all runs of a category spent divided by its executable scripts; the median is "
-        "over executed runs.",
+        "over executed runs. gate seconds / run: mean seconds per gated run spent on "
+        "checks and repairs made only because the semantic gate failed a script that ran "
+        "(N/A: gate off).",
         "",
         _markdown_table(runs, COST_METRICS),
         "",

@@ -28,6 +28,7 @@ CREATE TABLE IF NOT EXISTS runs (
     completion_tokens INTEGER NOT NULL, seconds REAL NOT NULL, message TEXT, out_dir TEXT,
     conformity REAL, scs REAL, collision INTEGER, min_distance REAL, min_ttc REAL,
     route_completion REAL, record TEXT NOT NULL, finished_at TEXT NOT NULL,
+    gate TEXT, gate_seconds REAL,
     UNIQUE (prompt_id, mode, temperature, run_index)
 );
 CREATE TABLE IF NOT EXISTS attempts (
@@ -38,6 +39,8 @@ CREATE TABLE IF NOT EXISTS attempts (
     PRIMARY KEY (run_id, idx)
 );
 """
+# Columns added after the first release: (name, type), added to older databases on open.
+ADDED_COLUMNS = [("gate", "TEXT"), ("gate_seconds", "REAL")]
 
 
 class BenchStoreError(AriseError):
@@ -52,8 +55,17 @@ class BenchStore:
             self._db = sqlite3.connect(path)
             self._db.execute("PRAGMA foreign_keys = ON")
             self._db.executescript(SCHEMA)
+            self._add_columns()
         except sqlite3.DatabaseError as error:
             raise BenchStoreError(f"{path}: not a benchmark database ({error})") from error
+
+    def _add_columns(self) -> None:
+        """A database written before a column existed gets it (empty for its old runs)."""
+        present = {row[1] for row in self._db.execute("PRAGMA table_info(runs)")}
+        with self._db:
+            for name, kind in ADDED_COLUMNS:
+                if name not in present:
+                    self._db.execute(f"ALTER TABLE runs ADD COLUMN {name} {kind}")
 
     def close(self) -> None:
         self._db.close()
@@ -93,8 +105,9 @@ class BenchStore:
                 "INSERT INTO runs (prompt_id, category, description, mode, temperature, "
                 "run_index, status, first_pass_ok, repairs, llm_calls, prompt_tokens, "
                 "completion_tokens, seconds, message, out_dir, conformity, scs, collision, "
-                "min_distance, min_ttc, route_completion, record, finished_at) "
-                "VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)",
+                "min_distance, min_ttc, route_completion, record, finished_at, gate, "
+                "gate_seconds) "
+                "VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)",
                 (
                     task.prompt_id,
                     task.category,
@@ -119,6 +132,8 @@ class BenchStore:
                     crit.get("route_completion"),
                     json.dumps(record.as_dict()),
                     datetime.now(UTC).isoformat(timespec="seconds"),
+                    record.gate,
+                    round(record.gate_seconds, 3),
                 ),
             )
             run_id = cursor.lastrowid

@@ -14,7 +14,7 @@ from rich.text import Text
 from arise.generate.events import AttemptChecked, ProgressEvent, StageStarted
 from arise.generate.options import GenerateOptions, Mode
 from arise.generate.pipeline import Generator, slug
-from arise.generate.run import Generation, RunStatus
+from arise.generate.run import GateVerdict, Generation, RunStatus
 from arise.llm.cli_options import (
     ModelOption,
     NoCacheOption,
@@ -39,6 +39,8 @@ Examples:
   arise generate --file prompts.txt -o out/ --count 3
 
   arise generate "..." --mode single-pass --provider openai --model gpt-4o-mini
+
+  arise generate "..." --no-semantic-gate   # keep the first script that runs, as it is
 """
 
 
@@ -101,11 +103,15 @@ def generate_command(
     semantic_gate: Annotated[
         bool,
         typer.Option(
-            "--semantic-gate",
-            help="Also require the deterministic conformity check to agree "
-            "with the description (adversary, start side, maneuver, road, weather).",
+            "--semantic-gate/--no-semantic-gate",
+            help="In arise mode (the default), a script that runs must also agree with the "
+            "description (adversary class, start side, ego maneuver, road, reach of the "
+            "ego's path, missing or extra actors, weather) or be repaired; when the budget "
+            "runs out, the script that ran with the fewest contradictions is kept and they "
+            "are reported. Never on in the single-pass and chatscene baselines. "
+            'Example: arise generate "..." --no-semantic-gate',
         ),
-    ] = False,
+    ] = True,
     as_json: Annotated[bool, typer.Option("--json", help="Print the reports as JSON.")] = False,
 ) -> None:
     descriptions = _read_descriptions(description, file)
@@ -151,6 +157,7 @@ def generate_command(
                         console.print("  sandbox: " + confinement_summary(labels))
                     for note in run.contradictions:
                         console.print(f"  [yellow]contradiction:[/yellow] {note}")
+                    _print_gate(run)
     if as_json:
         payload = [run.report() for run in runs]
         print(json.dumps(payload[0] if single else payload, indent=2, default=str))
@@ -161,6 +168,23 @@ def generate_command(
         errors.print(f"[red]error:[/red] {runs[0].message}")
         raise typer.Exit(2)
     raise typer.Exit(0 if all(run.ok for run in runs) else 1)
+
+
+def _print_gate(run: Generation) -> None:
+    """The semantic gate's verdict on the final script and what it cost (the summary line
+    already lists the contradictions left)."""
+    verdict = run.gate
+    if verdict is GateVerdict.OFF or verdict is GateVerdict.NOT_REACHED:
+        return
+    cost = f"; {run.gate_seconds:.0f} s of checks and repairs for it" if run.gate_seconds else ""
+    if verdict is GateVerdict.PASSED:
+        console.print(f"  semantic gate: agrees with the description{cost}")
+        return
+    sections = ", ".join(dict.fromkeys(c.section for c in run.contradictions_left))
+    console.print(
+        f"  [yellow]semantic gate:[/yellow] not met within the repair budget; "
+        f"section(s) to change: {sections}{cost}"
+    )
 
 
 def _run_with_progress(generator: Generator, text: str, folder: Path, quiet: bool) -> Generation:
