@@ -30,6 +30,9 @@ class AdversaryType(StrEnum):
 
 #: Classes an adversary may have (the scenic_class of each AdversaryType, in order).
 ADVERSARY_CLASSES: tuple[str, ...] = tuple(kind.scenic_class for kind in AdversaryType)
+#: Classes a description may name for an adversary, and the class whose entries fit them
+#: (a van drives like a car, a bus like a truck).
+REFINED_CLASSES: dict[str, str] = {"Van": "Car", "Bus": "Truck"}
 #: Classes of road users in CARLA's Scenic model (and in our offline world model).
 ACTOR_CLASSES: tuple[str, ...] = (
     "Car",
@@ -103,6 +106,21 @@ MAP_FEATURES: tuple[str, ...] = (
     "highway",
     "curve",
 )
+
+
+class Approach(StrEnum):
+    """Where an adversary comes from, seen from the ego at the start. Knowledge-base entries
+    state it so that retrieval can honour the side a description asks for."""
+
+    LEFT = "left"  # crosses the ego's path from its left (a road from the left, the left kerb)
+    RIGHT = "right"  # crosses the ego's path from its right
+    OPPOSITE = "opposite"  # oncoming, driving toward the ego
+    AHEAD = "same_direction_ahead"  # in the ego's lane or route, ahead of it
+    BEHIND = "same_direction_behind"  # in the ego's lane, behind it
+    ADJACENT_LEFT = "adjacent_left"  # same direction, in the lane to the ego's left
+    ADJACENT_RIGHT = "adjacent_right"  # same direction, in the lane to the ego's right
+    ROADSIDE_LEFT = "roadside_left"  # stays beside the road on the left (parked, walking along)
+    ROADSIDE_RIGHT = "roadside_right"  # stays beside the road on the right
 
 # -- what the ego does ----------------------------------------------------------------------
 

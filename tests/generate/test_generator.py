@@ -13,7 +13,7 @@ from arise.generate.events import ProgressEvent, RunFinished, StageStarted, even
 from arise.generate.options import GenerateOptions
 from arise.generate.pipeline import Generator, ReconfigureError
 from arise.generate.run import RunStatus
-from arise.generate.spec import ScenarioSpec
+from arise.generate.spec import ExtractionAnswer, ScenarioSpec
 from arise.llm.accounting import UsageLedger
 from arise.validate.types import AgentTrace, CheckResult, SimulationFacts, Stage, TracePoint
 from tests.fakes import FakeValidator, ScriptedProvider, passed
@@ -23,12 +23,20 @@ DESCRIPTION = "A pedestrian steps off the right sidewalk in front of the ego car
 SPEC = ScenarioSpec.model_validate(
     {
         "adversary_type": "pedestrian",
-        "behavior": "steps off the sidewalk and crosses",
+        "behavior": "steps off the right sidewalk",
         "road_type": "straight_road",
         "ego_maneuver": "go_straight",
-        "geometry": "a straight road",
-        "spawn_position": "crossing_road_from_right",
-        "spawn": "on the right sidewalk ahead",
+        "geometry": "",
+        "spawn_position": "roadside_right",
+        "spawn": "the right sidewalk",
+    }
+)
+#: The model's answer for DESCRIPTION (what extraction asks the model for).
+ANSWER = ExtractionAnswer.model_validate(
+    {
+        "adversary": "A pedestrian",
+        **SPEC.model_dump(include={"adversary_type", "behavior", "road_type", "ego_maneuver"}),
+        **SPEC.model_dump(include={"geometry", "spawn_position", "spawn"}),
     }
 )
 
@@ -57,7 +65,7 @@ def test_a_model_that_fails_mid_run_ends_it_as_a_provider_error(
     generator: Generator, tmp_path: Path
 ) -> None:
     # Extraction answers; the parameter tuning gets three replies that never fit its schema.
-    model = _script(generator, SPEC.model_dump_json(), "{}", "{}", "{}")
+    model = _script(generator, ANSWER.model_dump_json(), "{}", "{}", "{}")
     events: list[ProgressEvent] = []
     run = generator.generate(DESCRIPTION, tmp_path, events.append)
     assert run.status is RunStatus.PROVIDER_ERROR and "TunedParams" in (run.message or "")
@@ -147,7 +155,7 @@ def test_reconfigure_loads_another_kb_and_rebuilds_its_own_provider(tmp_path: Pa
 
 
 def test_topk_is_the_number_of_candidates_kept(generator: Generator, tmp_path: Path) -> None:
-    _script(generator, SPEC.model_dump_json(), "{}", "{}", "{}")
+    _script(generator, ANSWER.model_dump_json(), "{}", "{}", "{}")
     generator.reconfigure(generator.options.model_copy(update={"topk": 2}))
     try:
         run = generator.generate(DESCRIPTION)

@@ -6,7 +6,8 @@ import json
 import re
 from dataclasses import dataclass, field
 
-from arise.generate.spec import ScenarioSpec
+from arise.generate.grounding import ground
+from arise.generate.spec import ExtractionAnswer, ScenarioSpec
 from arise.llm.base import BaseProvider
 from arise.llm.types import Message
 from arise.prompts import load, load_jsonl
@@ -29,6 +30,7 @@ class Extraction:
     spec: ScenarioSpec | None = None
     error: str | None = None
     contradictions: list[str] = field(default_factory=list)
+    notes: list[str] = field(default_factory=list)  # model answers overruled or dropped
 
 
 def check_description(description: str) -> str | None:
@@ -79,7 +81,8 @@ def extraction_messages(description: str) -> list[Message]:
 def extract_spec(
     description: str, provider: BaseProvider, *, temperature: float = 0.0, seed: int | None = None
 ) -> Extraction:
-    """Module A. Provider failures propagate (the caller records them); bad input does not."""
+    """Module A: the model's answer, grounded in the description (`grounding.ground`).
+    Provider failures propagate (the caller records them); bad input does not."""
     refusal = check_description(description)
     if refusal:
         return Extraction(error=refusal)
@@ -87,9 +90,14 @@ def extract_spec(
         extraction_messages(description),
         temperature=temperature,
         max_tokens=600,
-        schema=ScenarioSpec,
+        schema=ExtractionAnswer,
         seed=seed,
     )
-    spec = completion.parsed
-    assert isinstance(spec, ScenarioSpec)
-    return Extraction(spec=spec, contradictions=find_contradictions(description, spec))
+    answer = completion.parsed
+    assert isinstance(answer, ExtractionAnswer)
+    grounded = ground(description, answer)
+    return Extraction(
+        spec=grounded.spec,
+        contradictions=find_contradictions(description, grounded.spec),
+        notes=grounded.notes,
+    )

@@ -18,7 +18,6 @@ from arise.generate.conformity import (
 )
 from arise.generate.events import Progress, RunFinished, RunStage, StageStarted, ignore
 from arise.generate.extract import check_description, extract_spec
-from arise.generate.hints import apply_hints, keep_stated_requirements
 from arise.generate.options import GenerateOptions, Mode
 from arise.generate.outputs import write_attempt, write_report, write_script
 from arise.generate.repair import GatedValidate, RepairContext, Validate, repair_loop
@@ -268,9 +267,8 @@ class Generator:
         )
         if extraction.spec is None:
             return Outcome(RunStatus.REFUSED, extraction.error)
-        hinted, run.hint_notes = apply_hints(run.description, extraction.spec)
-        run.spec, dropped = keep_stated_requirements(run.description, hinted)
-        run.hint_notes += dropped
+        run.spec = extraction.spec
+        run.hint_notes = extraction.notes
         run.contradictions = extraction.contradictions
         spec = run.spec
         emit(StageStarted(RunStage.RETRIEVE))
@@ -281,7 +279,7 @@ class Generator:
                 spec, self.kb, self.retriever, self.maps, run.description, topk=options.topk
             )
         emit(StageStarted(RunStage.ASSEMBLE))
-        adversary = spec.adversary_type.scenic_class
+        adversary = spec.scenic_class
         try:
             params: dict[str, str] = {}
             if options.mode is not Mode.CHATSCENE and run.retrieval.chosen:

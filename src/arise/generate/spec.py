@@ -11,6 +11,7 @@ from enum import StrEnum
 
 from pydantic import BaseModel, Field, field_validator
 
+from arise.generate.facts import GroundedFact
 from arise.vocabulary import (
     DEFAULT_WEATHER,
     WEATHER_PRESETS,
@@ -23,6 +24,7 @@ from arise.vocabulary import (
 
 __all__ = [
     "AdversaryManeuver",
+    "ExtractionAnswer",
     "AdversaryType",
     "EgoManeuver",
     "RelativePosition",
@@ -48,8 +50,27 @@ class Requirement(BaseModel):
     text: str = Field(description="the constraint in the description's own words")
 
 
+class ExtractionAnswer(BaseModel):
+    """What the model is asked for: the parts of the description, in its own words."""
+
+    adversary: str = Field(description="the exact words of the description that name the adversary")
+    adversary_type: AdversaryType
+    behavior: str = Field(description="the exact words that say what the adversary does")
+    road_type: RoadType
+    ego_maneuver: EgoManeuver
+    geometry: str = Field(description="the exact words about the road and the ego's route")
+    spawn_position: RelativePosition
+    spawn: str = Field(description="the exact words that say where the adversary starts, or ''")
+    participants: list[str] = Field(
+        default_factory=list,
+        description="the exact words naming each other road user or object, one per item",
+    )
+    requirements: list[Requirement] = Field(default_factory=list)
+
+
 class ScenarioSpec(BaseModel):
-    """The seven components of a scenario, as the paper splits them."""
+    """The seven components of a scenario, as the paper splits them, each grounded in the
+    description (`grounding` says which words each fact rests on, or that it defaulted)."""
 
     adversary_type: AdversaryType
     behavior: str = Field(description="what the adversary does, in a short sentence")
@@ -67,6 +88,15 @@ class ScenarioSpec(BaseModel):
     )
     weather: str = Field(default=DEFAULT_WEATHER, description="a CARLA weather preset")
     requirements: list[Requirement] = Field(default_factory=list)
+    adversary_class: str | None = Field(
+        default=None, description="the Scenic class the text names (Van, Bus, ...), if any"
+    )
+    grounding: list[GroundedFact] = Field(default_factory=list)
+
+    @property
+    def scenic_class(self) -> str:
+        """The adversary's Scenic class: the one named (a van is a Van), else its type's."""
+        return self.adversary_class or self.adversary_type.scenic_class
 
     @field_validator("weather")
     @classmethod

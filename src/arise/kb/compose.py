@@ -15,7 +15,7 @@ from collections.abc import Iterable, Mapping, Sequence
 from arise.errors import AriseError
 from arise.kb.schema import COMPONENT_ORDER, PLACEHOLDER_PATTERN, Component, Entry
 from arise.sections import MarkerKind, parse_marker, write_section
-from arise.vocabulary import ADVERSARY_CLASSES
+from arise.vocabulary import ADVERSARY_CLASSES, REFINED_CLASSES
 
 SINGLE = (Component.BEHAVIOR, Component.GEOMETRY, Component.SPAWN)  # exactly one each
 OPTIONAL_SINGLE = (Component.WEATHER,)  # at most one
@@ -50,6 +50,7 @@ def header(map_name: str) -> str:
 def composition_problems(entries: Sequence[Entry], adversary_class: str) -> list[str]:
     """Why these entries would not make a script (empty when they would)."""
     problems: list[str] = []
+    adversary_class = REFINED_CLASSES.get(adversary_class, adversary_class)  # a Van fits as a Car
     if adversary_class not in ADVERSARY_CLASSES:
         problems.append(
             f"adversary class {adversary_class!r} is not one of {', '.join(ADVERSARY_CLASSES)}"
@@ -134,7 +135,8 @@ def compose(
     entries: exactly one behavior, geometry and spawn entry; at most one weather entry;
         any number of misc and requirements entries (in the order given).
     adversary_class: what `{{ADVERSARY_CLASS}}` becomes (Car, Truck, Motorcycle, Bicycle,
-        Pedestrian); every entry must suit it.
+        Pedestrian, or Van and Bus, which fit where a Car and a Truck do); every entry must
+        suit it.
     map_name: a map known to the registry (`arise maps list`); pick one with `pick_map`.
     placeholders: values for any other `{{NAME}}` the entries declare.
     terminate_after: seconds after which the scenario ends, unless a requirements entry

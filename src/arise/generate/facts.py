@@ -1,0 +1,28 @@
+"""A grounded fact: one value of the spec, where it came from and the words it rests on."""
+
+from __future__ import annotations
+
+from enum import StrEnum
+
+from pydantic import BaseModel
+
+
+class FactSource(StrEnum):
+    TEXT = "text"  # a fixed rule read it from the description's words
+    MODEL = "model"  # the model's answer, backed by a quote found in the description
+    GUESS = "guess"  # the model's answer with no words of the description behind it
+    DEFAULT = "default"  # the description does not say: a neutral value
+
+
+class GroundedFact(BaseModel):
+    name: str
+    value: str
+    source: FactSource
+    quote: str | None = None
+
+    def describe(self) -> str:
+        if self.source is FactSource.DEFAULT:
+            return f"{self.name}: {self.value} (not stated)"
+        if self.source is FactSource.GUESS:
+            return f"{self.name}: {self.value} (the model's guess; no words of the text say it)"
+        return f'{self.name}: {self.value}  <- "{self.quote}"'

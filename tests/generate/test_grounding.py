@@ -1,0 +1,239 @@
+"""Grounded extraction: the fixed readers and how they overrule or keep the model's answer.
+
+The sentences here are written for these tests (none is from a dev set or a prompt file).
+"""
+
+from __future__ import annotations
+
+import pytest
+
+from arise.generate.facts import FactSource
+from arise.generate.grounding import (
+    find_quote,
+    ground,
+    quote_in,
+    read_description,
+    read_weather,
+)
+from arise.generate.mentions import read_cast
+from arise.generate.spec import ExtractionAnswer
+from arise.vocabulary import AdversaryManeuver, AdversaryType, EgoManeuver, RelativePosition
+
+
+def answer(**overrides: object) -> ExtractionAnswer:
+    """A model answer that is wrong in the usual ways unless a test says otherwise."""
+    fields: dict[str, object] = {
+        "adversary": "",
+        "adversary_type": "car",
+        "behavior": "",
+        "road_type": "straight_road",
+        "ego_maneuver": "go_straight",
+        "geometry": "",
+        "spawn_position": "ahead_same_lane",
+        "spawn": "",
+        "participants": [],
+        "requirements": [],
+    }
+    fields.update(overrides)
+    return ExtractionAnswer.model_validate(fields)
+
+
+# -- quotes ---------------------------------------------------------------------------------
+
+
+def test_a_quote_is_found_whatever_its_case_spacing_and_punctuation() -> None:
+    text = "Near the school, a Boy  chases his ball into the road."
+    assert quote_in(text, "a boy chases his ball")
+    assert quote_in(text, "near the school")
+    assert find_quote(text, "a boy chases") == (17, 30)
+
+
+def test_a_quote_that_is_not_in_the_text_is_rejected() -> None:
+    text = "A boy chases his ball into the road."
+    assert not quote_in(text, "a girl chases")
+    assert not quote_in(text, "boy chases his ball onto the pavement")
+    assert not quote_in(text, "")
+    assert not quote_in(text, "oy chas")  # words, not fragments of words
+
+
+# -- who is named ---------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize(
+    ("text", "expected"),
+    [
+        ("A courier van waits at the kerb; the van then pulls out.", [("Van", 1)]),
+        (
+            "Two joggers and a dog walker cross near the ego vehicle.",
+            [("Pedestrian", 2), ("Pedestrian", 1)],
+        ),
+        ("The ego car passes four traffic cones and a recycling bin.", [("Cone", 4), ("Trash", 1)]),
+        ("A tour bus is parked at the bus stop.", [("Bus", 1), ("BusStop", 1)]),
+        ("The AV's bumper touched a pickup truck; both vehicles were scratched.", [("Truck", 1)]),
+        ("The ego skids on ice; no other vehicle is involved.", []),
+        ("A box truck brakes hard in front of the ego.", [("Truck", 1)]),
+        ("A scooter weaves through the bike lane.", [("Motorcycle", 1)]),
+    ],
+)
+def test_the_things_a_text_names_are_read_once_each(
+    text: str, expected: list[tuple[str, int]]
+) -> None:
+    assert [(m.cls, m.count) for m in read_cast(text).others] == expected
+
+
+def test_the_ego_is_never_one_of_the_others() -> None:
+    cast = read_cast("The ego vehicle follows a taxi; the autonomous vehicle brakes.")
+    assert [m.cls for m in cast.others] == ["Car"]
+    assert len(cast.ego) == 2
+
+
+# -- weather --------------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize(
+    ("text", "preset", "source"),
+    [
+        ("A cyclist swerves around a pothole.", "ClearNoon", FactSource.DEFAULT),
+        ("In a light drizzle a car brakes ahead.", "SoftRainNoon", FactSource.TEXT),
+        ("During a downpour at night a truck skids.", "HardRainNight", FactSource.TEXT),
+        ("At dusk a runner crosses.", "ClearSunset", FactSource.TEXT),
+        ("On a wet street under an overcast sky a van stops.", "WetCloudyNoon", FactSource.TEXT),
+        ("A dark blue sedan cuts in.", "ClearNoon", FactSource.DEFAULT),
+        ("The car waits at the red light.", "ClearNoon", FactSource.DEFAULT),
+    ],
+)
+def test_weather_comes_from_weather_words_only(text: str, preset: str, source: FactSource) -> None:
+    fact = read_weather(text)
+    assert (fact.value, fact.source) == (preset, source)
+
+
+# -- sides and turns, attributed to the right actor -----------------------------------------
+
+
+@pytest.mark.parametrize(
+    ("text", "position"),
+    [
+        ("A moped rider on the right front cuts across the ego.", "adjacent_lane_right"),
+        ("A sedan on the left front drifts toward the ego.", "adjacent_lane_left"),
+        (
+            "A pickup truck approaches the crossing from the right and keeps going.",
+            "crossing_road_from_right",
+        ),
+        ("An oncoming bus swings wide into the ego's lane.", "oncoming"),
+        ("A hatchback closes in from behind and taps the ego.", "behind_same_lane"),
+        ("A woman on the opposite sidewalk starts to cross.", "roadside_left"),
+        ("The ego follows a lead truck that stops suddenly.", "ahead_same_lane"),
+        (
+            "The ego moves into the right lane where a scooter is riding in that lane.",
+            "adjacent_lane_right",
+        ),
+    ],
+)
+def test_the_adversary_side_is_read_from_its_own_words(text: str, position: str) -> None:
+    reading = read_description(text)
+    assert reading.facts["spawn_position"].value == position
+
+
+def test_a_side_said_of_another_actor_is_not_the_adversary_side() -> None:
+    text = "A lorry is parked on the right; a child runs out from the left."
+    reading = read_description(text, adversary_quote="a child")
+    assert reading.adversary is not None and reading.adversary.cls == "Pedestrian"
+    assert reading.facts["spawn_position"].value == "crossing_road_from_left"
+
+
+def test_compass_bearings_turn_into_the_ego_frame() -> None:
+    text = (
+        "The AV was travelling southbound on Elm Row. A westbound motorcycle crossed in "
+        "front of it."
+    )
+    assert read_description(text).facts["spawn_position"].value == "crossing_road_from_left"
+
+
+@pytest.mark.parametrize(
+    ("text", "ego", "adversary"),
+    [
+        (
+            "The ego goes straight while the other car makes a left turn.",
+            "go_straight",
+            "turn_left",
+        ),
+        (
+            "The ego turns left; a courier van coming the other way goes straight.",
+            "turn_left",
+            "straight",
+        ),
+        ("Turning right at the lights, the ego meets a jogger.", "turn_right", None),
+        ("A taxi turns right in front of the ego.", None, "turn_right"),
+        ("An unprotected left at a crossroads with a fast oncoming sedan.", "turn_left", None),
+    ],
+)
+def test_turns_belong_to_whoever_makes_them(
+    text: str, ego: str | None, adversary: str | None
+) -> None:
+    facts = read_description(text).facts
+    assert (facts["ego_maneuver"].value if "ego_maneuver" in facts else None) == ego
+    assert (
+        facts["adversary_maneuver"].value if "adversary_maneuver" in facts else None
+    ) == adversary
+
+
+# -- the grounded spec ----------------------------------------------------------------------
+
+
+def test_the_text_overrules_the_model_and_says_so() -> None:
+    text = "The ego goes straight over a junction while a minibus from the right turns left."
+    grounded = ground(
+        text,
+        answer(
+            adversary="a minibus",
+            adversary_type="car",
+            ego_maneuver="turn_left",
+            spawn_position="oncoming",
+            participants=["a minibus from the right", "a parked car"],
+        ),
+    )
+    spec = grounded.spec
+    assert spec.adversary_type is AdversaryType.TRUCK and spec.scenic_class == "Bus"
+    assert spec.ego_maneuver is EgoManeuver.GO_STRAIGHT
+    assert spec.adversary_maneuver is AdversaryManeuver.TURN_LEFT
+    assert spec.spawn_position is RelativePosition.CROSSING_FROM_RIGHT
+    assert spec.participants == []  # the adversary echoed back and a car nobody named
+    assert spec.weather == "ClearNoon"
+    assert any("ego_maneuver: turn_left -> go_straight" in note for note in grounded.notes)
+    assert any("a parked car" in note for note in grounded.notes)
+
+
+def test_every_fact_says_where_it_came_from() -> None:
+    text = "At night a man steps out from behind a parked van on the right."
+    spec = ground(text, answer(adversary="a man", behavior="walks across the road")).spec
+    by_name = {fact.name: fact for fact in spec.grounding}
+    assert by_name["weather"].value == "ClearNight" and by_name["weather"].quote == "night"
+    assert by_name["adversary_type"].source is FactSource.TEXT
+    assert by_name["ego_maneuver"].source is FactSource.DEFAULT
+    assert spec.participants == ["a parked van on the right"]
+    assert spec.behavior == ""  # the model's words are not the text's
+    for fact in spec.grounding:
+        if fact.source in (FactSource.TEXT, FactSource.MODEL):
+            for piece in (fact.quote or "").split(" ... "):
+                assert quote_in(text, piece), fact
+
+
+def test_a_requirement_the_text_does_not_state_is_dropped() -> None:
+    text = "A van pulls out of a driveway ahead of the ego."
+    grounded = ground(
+        text,
+        answer(
+            adversary="a van",
+            requirements=[{"kind": "not_visible_at_start", "text": "hidden by a hedge"}],
+        ),
+    )
+    assert grounded.spec.requirements == []
+    assert any("not_visible_at_start" in note for note in grounded.notes)
+
+
+def test_without_a_named_road_user_the_model_type_is_marked_a_guess() -> None:
+    text = "Three cones block the ego's lane on a straight road."
+    spec = ground(text, answer(adversary="something", adversary_type="car")).spec
+    fact = next(f for f in spec.grounding if f.name == "adversary_type")
+    assert fact.source is FactSource.GUESS
+    assert [p.split()[:2] for p in spec.participants] == [["Three", "cones"]]
