@@ -122,6 +122,7 @@ class Approach(StrEnum):
     ROADSIDE_LEFT = "roadside_left"  # stays beside the road on the left (parked, walking along)
     ROADSIDE_RIGHT = "roadside_right"  # stays beside the road on the right
 
+
 # -- what the ego does ----------------------------------------------------------------------
 
 

@@ -1,20 +1,33 @@
 """Module B: the knowledge-base entries for a spec, ranked per component and compatible.
 
 Enums narrow the candidates (road type, ego maneuver, adversary class, what names each
-entry needs); the spec's words rank what is left. The result keeps the ranked lists, so
-the repair loop can fall back to the next candidate of a failing section.
+entry needs, the adversary's side and turn); the spec's words rank what is left. The result
+keeps the ranked lists, so the repair loop can fall back to the next candidate of a failing
+section.
+
+Side and turn filter, they never just rank: a geometry and spawn pair is graded by how well
+the side it gives the adversary (`Entry.approach`; a spawn on the geometry's conflict route
+takes the geometry's) and the turn (`Entry.adversary_maneuver`) fit the spec, and only pairs
+of the best grade found are kept, so that a candidate swap cannot bring the wrong side back.
 """
 
 from __future__ import annotations
 
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
+from enum import IntEnum
 
 from arise.generate.spec import ScenarioSpec
 from arise.kb.loader import KnowledgeBase
 from arise.kb.retrieval.base import Retriever
-from arise.kb.schema import Component, Entry
-from arise.vocabulary import EgoManeuver, RelativePosition, RoadType
+from arise.kb.schema import CONFLICT_ROUTE, Component, Entry
+from arise.vocabulary import (
+    AdversaryManeuver,
+    Approach,
+    EgoManeuver,
+    RelativePosition,
+    RoadType,
+)
 
 ROAD_FEATURES: dict[RoadType, tuple[str, ...]] = {
     RoadType.STRAIGHT: (),
@@ -47,6 +60,31 @@ SPAWN_TAGS: dict[RelativePosition, tuple[str, ...]] = {
     RelativePosition.ROADSIDE_LEFT: ("roadside", "left", "far_side"),
     RelativePosition.CROSSING_FROM_LEFT: ("conflict", "cross_traffic", "crossing", "left"),
     RelativePosition.CROSSING_FROM_RIGHT: ("conflict", "cross_traffic", "crossing", "right"),
+}
+#: Per spec position: the approaches that are that position, then the ones next best (a
+#: pedestrian "crossing from the right" may start on the right pavement and walk along).
+SIDE_APPROACHES: dict[RelativePosition, tuple[frozenset[Approach], frozenset[Approach]]] = {
+    RelativePosition.AHEAD_SAME_LANE: (frozenset({Approach.AHEAD}), frozenset()),
+    RelativePosition.BEHIND_SAME_LANE: (frozenset({Approach.BEHIND}), frozenset()),
+    RelativePosition.ADJACENT_LANE_LEFT: (frozenset({Approach.ADJACENT_LEFT}), frozenset()),
+    RelativePosition.ADJACENT_LANE_RIGHT: (frozenset({Approach.ADJACENT_RIGHT}), frozenset()),
+    RelativePosition.ONCOMING: (frozenset({Approach.OPPOSITE}), frozenset()),
+    RelativePosition.ROADSIDE_RIGHT: (
+        frozenset({Approach.ROADSIDE_RIGHT, Approach.RIGHT}),
+        frozenset(),
+    ),
+    RelativePosition.ROADSIDE_LEFT: (
+        frozenset({Approach.ROADSIDE_LEFT, Approach.LEFT}),
+        frozenset(),
+    ),
+    RelativePosition.CROSSING_FROM_LEFT: (
+        frozenset({Approach.LEFT}),
+        frozenset({Approach.ROADSIDE_LEFT}),
+    ),
+    RelativePosition.CROSSING_FROM_RIGHT: (
+        frozenset({Approach.RIGHT}),
+        frozenset({Approach.ROADSIDE_RIGHT}),
+    ),
 }
 MAX_MISC = 3
 #: Components whose candidate lists are pools to drop from, not ranked fall-backs.
@@ -94,10 +132,85 @@ def _prefer(entries: list[Entry], key: Callable[[Entry], int]) -> list[Entry]:
     return sorted(entries, key=lambda entry: -key(entry))
 
 
-def _route_agrees(behavior: Entry, geometry: Entry) -> bool:
-    """A turning behavior follows the geometry's adversary route: only its own geometries
-    give that route the turn its name promises."""
-    return "turning_across" not in behavior.tags or geometry.id in behavior.companions
+class Fit(IntEnum):
+    """How well a geometry and spawn pair puts the adversary where the spec says; lower is
+    better, and only the best grade available is kept."""
+
+    EXACT = 0  # the side (and the turn, when stated) the spec asks for
+    NEAR = 1  # the next best side (e.g. the right pavement for "crossing from the right")
+    UNSPECIFIC = 2  # the entries do not fix the side or the turn
+    CONTRADICTS = 3  # another side or turn: used only when nothing else composes
+
+
+def pair_approach(geometry: Entry, spawn: Entry) -> Approach | None:
+    """Where this pair starts the adversary: the spawn says, or a spawn on the geometry's
+    conflict route comes from the side the geometry states."""
+    if spawn.approach is not None:
+        return spawn.approach
+    return geometry.approach if CONFLICT_ROUTE in spawn.needs else None
+
+
+def pair_maneuver(geometry: Entry, spawn: Entry) -> AdversaryManeuver | None:
+    """Which way this pair's adversary route goes through the junction, if fixed."""
+    if spawn.adversary_maneuver is not None:
+        return spawn.adversary_maneuver
+    return geometry.adversary_maneuver if CONFLICT_ROUTE in spawn.needs else None
+
+
+def approach_fit(position: RelativePosition, approach: Approach | None) -> Fit:
+    """Grade one approach against the spec's start position."""
+    if approach is None:
+        return Fit.UNSPECIFIC
+    exact, near = SIDE_APPROACHES[position]
+    if approach in exact:
+        return Fit.EXACT
+    return Fit.NEAR if approach in near else Fit.CONTRADICTS
+
+
+def maneuver_fit(wanted: AdversaryManeuver, maneuver: AdversaryManeuver | None) -> Fit:
+    """Grade one adversary maneuver against the spec's (an unstated one fits anything)."""
+    if wanted is AdversaryManeuver.UNSTATED:
+        return Fit.EXACT
+    if maneuver is None:
+        return Fit.UNSPECIFIC
+    return Fit.EXACT if maneuver is wanted else Fit.CONTRADICTS
+
+
+def pair_fit(spec: ScenarioSpec, geometry: Entry, spawn: Entry) -> Fit:
+    """The worse of the side grade and the turn grade of a geometry and spawn pair."""
+    return max(
+        approach_fit(spec.spawn_position, pair_approach(geometry, spawn)),
+        maneuver_fit(spec.adversary_maneuver, pair_maneuver(geometry, spawn)),
+    )
+
+
+def turn_agrees(spec: ScenarioSpec, behavior: Entry, route: AdversaryManeuver | None) -> bool:
+    """A behavior that acts out a turn needs a route known to turn that way, and a stated
+    adversary maneuver it does not contradict."""
+    turn = behavior.adversary_maneuver
+    if turn is None:
+        return True
+    stated = spec.adversary_maneuver
+    return turn is route and stated in (AdversaryManeuver.UNSTATED, turn)
+
+
+def _fit_note(spec: ScenarioSpec, fit: Fit) -> str | None:
+    """What the report says when the best pair is not an exact fit."""
+    wanted = spec.spawn_position.value.replace("_", " ")
+    turn = spec.adversary_maneuver
+    if turn is not AdversaryManeuver.UNSTATED:
+        wanted += " and " + (
+            "going straight"
+            if turn is AdversaryManeuver.STRAIGHT
+            else turn.value.replace("_", "ing ")
+        )
+    if fit is Fit.NEAR:
+        return f"no entry starts the adversary exactly {wanted}; kept the closest side"
+    if fit is Fit.UNSPECIFIC:
+        return f"no entry is specific about {wanted}; kept entries that do not fix the side"
+    if fit is Fit.CONTRADICTS:
+        return f"no entry puts the adversary {wanted}; its side or turn is not honoured"
+    return None
 
 
 def _geometry_pool(
@@ -137,6 +250,39 @@ def _geometry_pool(
     return [], notes
 
 
+@dataclass(frozen=True)
+class _Core:
+    """The chosen geometry, spawn and the behaviors that fit them, at one grade of fit."""
+
+    geometry: Entry
+    spawn: Entry
+    behaviors: list[Entry]
+    fit: Fit
+
+
+def _first_core(
+    spec: ScenarioSpec,
+    geometries: list[Entry],
+    spawns: list[Entry],
+    behaviors: list[Entry],
+    fit: Fit,
+    fits_a_map: Callable[[list[Entry]], bool],
+) -> _Core | None:
+    """The first geometry, spawn and behavior in rank order that compose on a map, using
+    only pairs that fit the spec at `fit` or better."""
+    for geometry in geometries:
+        defined = set(geometry.defines)
+        for spawn in spawns:
+            if not set(spawn.needs) <= defined or pair_fit(spec, geometry, spawn) > fit:
+                continue
+            both = defined | set(spawn.defines)
+            route = pair_maneuver(geometry, spawn)
+            usable = [b for b in behaviors if set(b.needs) <= both and turn_agrees(spec, b, route)]
+            if usable and fits_a_map([geometry, spawn, usable[0]]):
+                return _Core(geometry, spawn, usable, fit)
+    return None
+
+
 def retrieve(
     spec: ScenarioSpec,
     kb: KnowledgeBase,
@@ -147,7 +293,11 @@ def retrieve(
     topk: int | None = None,
 ) -> Retrieval:
     """Candidates per component for `spec` (the first `topk` of each, all when None), and
-    one consistent choice of entries."""
+    one consistent choice of entries.
+
+    Geometry and spawn candidates that start the adversary on another side, or send it
+    another way than the spec states, are left out; entries that do not say are kept only
+    when no entry that does fits (`notes` says so)."""
     from arise.kb.compose import pick_map as default_pick_map
 
     choose_map = pick_map or default_pick_map
@@ -156,6 +306,9 @@ def retrieve(
 
     def placeable(entry: Entry) -> bool:
         return choose_map([entry], maps) is not None
+
+    def fits_a_map(entries: list[Entry]) -> bool:
+        return choose_map(entries, maps) is not None
 
     def query(text: str) -> str:
         return f"{text} {text} {description}".strip()
@@ -169,59 +322,63 @@ def retrieve(
         geometry_pool,
     )
     spawn_tags = set(SPAWN_TAGS[spec.spawn_position])
-    for geometry in geometries:
-        defined = set(geometry.defines)
-        spawns = [
-            e
-            for e in kb.of(Component.SPAWN)
-            if e.suits(adversary) and set(e.needs) <= defined and placeable(e)
-        ]
-        spawns = _prefer(
-            _ranked(
-                retriever,
-                query(f"{spec.spawn} {spec.spawn_position.value}"),
-                Component.SPAWN,
-                spawns,
-            ),
-            lambda e: len(spawn_tags & set(e.tags)),
-        )
-        for spawn in spawns:
-            both = defined | set(spawn.defines)
-            behaviors = [
-                e
-                for e in kb.of(Component.BEHAVIOR)
-                if e.suits(adversary) and set(e.needs) <= both and _route_agrees(e, geometry)
-            ]
-            behaviors = _ranked(retriever, query(spec.behavior), Component.BEHAVIOR, behaviors)
-            if not behaviors:
-                continue
-            if choose_map([geometry, spawn, behaviors[0]], maps) is None:
-                continue
-            result.candidates[Component.GEOMETRY] = [geometry] + [
-                g for g in geometries if g is not geometry
-            ]
-            result.candidates[Component.SPAWN] = spawns[spawns.index(spawn) :]
-            result.candidates[Component.BEHAVIOR] = behaviors
-            result.chosen = {
-                Component.GEOMETRY: [geometry],
-                Component.SPAWN: [spawn],
-                Component.BEHAVIOR: [behaviors[0]],
-            }
-            _add_extras(
-                spec,
-                kb,
-                retriever,
-                maps,
-                choose_map,
-                result,
-                both | set(behaviors[0].defines),
-                query,
-            )
-            result.map_name = choose_map(result.chosen_entries(), maps)
-            if topk is not None:
-                result.keep(topk)
-            return result
-    result.notes.append(f"no compatible geometry/spawn/behavior for a {adversary}")
+    spawns = _prefer(
+        _ranked(
+            retriever,
+            query(f"{spec.spawn} {spec.spawn_position.value}"),
+            Component.SPAWN,
+            [e for e in kb.of(Component.SPAWN) if e.suits(adversary) and placeable(e)],
+        ),
+        lambda e: len(spawn_tags & set(e.tags)),
+    )
+    behaviors = _ranked(
+        retriever,
+        query(spec.behavior),
+        Component.BEHAVIOR,
+        [e for e in kb.of(Component.BEHAVIOR) if e.suits(adversary)],
+    )
+    core = next(
+        (
+            found
+            for fit in Fit
+            if (found := _first_core(spec, geometries, spawns, behaviors, fit, fits_a_map))
+        ),
+        None,
+    )
+    if core is None:
+        result.notes.append(f"no compatible geometry/spawn/behavior for a {adversary}")
+        return result
+    note = _fit_note(spec, core.fit)
+    if note:
+        result.notes.append(note)
+    geometry, spawn = core.geometry, core.spawn
+    defined = set(geometry.defines)
+    pair_spawns = [
+        s for s in spawns if set(s.needs) <= defined and pair_fit(spec, geometry, s) <= core.fit
+    ]
+    result.candidates[Component.GEOMETRY] = [geometry] + [
+        g for g in geometries if g is not geometry and pair_fit(spec, g, spawn) <= core.fit
+    ]
+    result.candidates[Component.SPAWN] = pair_spawns[pair_spawns.index(spawn) :]
+    result.candidates[Component.BEHAVIOR] = core.behaviors
+    result.chosen = {
+        Component.GEOMETRY: [geometry],
+        Component.SPAWN: [spawn],
+        Component.BEHAVIOR: [core.behaviors[0]],
+    }
+    _add_extras(
+        spec,
+        kb,
+        retriever,
+        maps,
+        choose_map,
+        result,
+        defined | set(spawn.defines) | set(core.behaviors[0].defines),
+        query,
+    )
+    result.map_name = choose_map(result.chosen_entries(), maps)
+    if topk is not None:
+        result.keep(topk)
     return result
 
 

@@ -9,9 +9,9 @@ from __future__ import annotations
 import re
 from enum import StrEnum
 
-from pydantic import BaseModel, ConfigDict, Field, field_validator
+from pydantic import BaseModel, ConfigDict, Field, field_validator, model_validator
 
-from arise.vocabulary import ADVERSARY_CLASSES, MAP_FEATURES
+from arise.vocabulary import ADVERSARY_CLASSES, MAP_FEATURES, AdversaryManeuver, Approach
 
 
 class Component(StrEnum):
@@ -36,6 +36,11 @@ COMPONENT_ORDER: tuple[Component, ...] = tuple(Component)
 ID_PATTERN = re.compile(r"^[a-z][a-z0-9_]*(\.[a-z0-9_]+)*$")
 NAME_PATTERN = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
 PLACEHOLDER_PATTERN = re.compile(r"\{\{([A-Z][A-Z0-9_]*)\}\}")
+#: The name a geometry defines for the route its adversary should take; a spawn that needs
+#: it puts the adversary on that route, so the geometry decides the adversary's side.
+CONFLICT_ROUTE = "conflictManeuver"
+#: Components that may say where the adversary comes from and which way it goes.
+SIDED_COMPONENTS = frozenset({Component.GEOMETRY, Component.SPAWN, Component.BEHAVIOR})
 
 
 class Entry(BaseModel):
@@ -70,6 +75,16 @@ class Entry(BaseModel):
         default_factory=list,
         description="ids of entries it is known to compose well with (tried first when "
         "validating; a hint for the generator)",
+    )
+    approach: Approach | None = Field(
+        default=None,
+        description="where the adversary comes from, seen from the ego (geometry: the start "
+        "of its conflict route; spawn: where it places the adversary); None: not fixed",
+    )
+    adversary_maneuver: AdversaryManeuver | None = Field(
+        default=None,
+        description="which way the adversary goes through the junction (geometry: its "
+        "conflict route; behavior: the turn it acts out); None: any",
     )
     source: str | None = Field(
         default=None, description="file the entry came from (set by the loader)"
@@ -135,6 +150,28 @@ class Entry(BaseModel):
                 f"unknown map feature {', '.join(bad)}; choose from {', '.join(MAP_FEATURES)}"
             )
         return value
+
+    @field_validator("adversary_maneuver")
+    @classmethod
+    def _stated_maneuver(cls, value: AdversaryManeuver | None) -> AdversaryManeuver | None:
+        if value is AdversaryManeuver.UNSTATED:
+            raise ValueError("leave adversary_maneuver out when the entry fixes no maneuver")
+        return value
+
+    @model_validator(mode="after")
+    def _sides_only_where_they_mean_something(self) -> Entry:
+        """Side and maneuver belong to the entries that place or move the adversary; a
+        geometry states them for its conflict route, so it must define one."""
+        stated = self.approach is not None or self.adversary_maneuver is not None
+        if stated and self.component not in SIDED_COMPONENTS:
+            raise ValueError(f"a {self.component.value} entry cannot state approach or maneuver")
+        if self.component is Component.BEHAVIOR and self.approach is not None:
+            raise ValueError("a behavior does not place the adversary: drop its approach")
+        if stated and self.component is Component.GEOMETRY and CONFLICT_ROUTE not in self.defines:
+            raise ValueError(
+                f"a geometry states approach or maneuver only for the {CONFLICT_ROUTE} it defines"
+            )
+        return self
 
     def suits(self, adversary_class: str) -> bool:
         """True when this entry works with that adversary class."""
