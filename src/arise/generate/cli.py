@@ -9,6 +9,7 @@ from typing import Annotated, Any
 import typer
 from rich.console import Console
 from rich.live import Live
+from rich.markup import escape
 from rich.text import Text
 
 from arise.generate.events import AttemptChecked, ProgressEvent, StageStarted
@@ -155,6 +156,7 @@ def generate_command(
                     ]
                     if labels:
                         console.print("  sandbox: " + confinement_summary(labels))
+                    _print_grounding(run)
                     for note in run.contradictions:
                         console.print(f"  [yellow]contradiction:[/yellow] {note}")
                     _print_gate(run)
@@ -168,6 +170,18 @@ def generate_command(
         errors.print(f"[red]error:[/red] {runs[0].message}")
         raise typer.Exit(2)
     raise typer.Exit(0 if all(run.ok for run in runs) else 1)
+
+
+def _print_grounding(run: Generation) -> None:
+    """What the spec rests on: each fact with the words it came from, or "not stated";
+    and what the model said that the description does not."""
+    if run.spec is None or not run.spec.grounding:
+        return
+    console.print("  read from the description:")
+    for fact in run.spec.grounding:
+        console.print(f"    {escape(fact.describe())}", highlight=False)
+    for note in run.hint_notes:
+        console.print(f"    [dim]{escape(note)}[/dim]", highlight=False)
 
 
 def _print_gate(run: Generation) -> None:

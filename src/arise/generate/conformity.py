@@ -304,7 +304,7 @@ def check_conformity(
         return result
     ego = next((a for a in facts.agents if a.is_ego), None)
     adversary = find_adversary(facts.agents)
-    expected_class = spec.adversary_type.scenic_class
+    expected_class = spec.scenic_class
     add(
         ConformityCheck(
             "adversary_type",

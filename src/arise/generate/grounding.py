@@ -204,7 +204,8 @@ _TURN = re.compile(
 _STRAIGHT = re.compile(
     r"\b(?:go(?:es|ing)?|continu\w*|driv\w*|head\w*|proceed\w*|keep\w*(?: going)?|"
     r"went|carr\w+ on|travel\w*) straight\b|\bstraight (?:through|across|ahead|on)\b|"
-    r"\bdoes not turn\b",
+    r"\bdoes not turn\b|\b(?:cross\w*|pass\w*|go\w* through|driv\w* through) (?:an?|the) "
+    r"(?:\w+ )?(?:intersection|junction|crossroads)\b|\bkeeps? (?:to )?(?:its|the) lane\b",
     re.I,
 )
 _LANE_CHANGE = re.compile(
