@@ -13,15 +13,18 @@ of the best grade found are kept, so that a candidate swap cannot bring the wron
 
 from __future__ import annotations
 
+import re
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from enum import IntEnum
 
+from arise.generate.mentions import read_cast
 from arise.generate.spec import ScenarioSpec
 from arise.kb.loader import KnowledgeBase
 from arise.kb.retrieval.base import Retriever
 from arise.kb.schema import CONFLICT_ROUTE, Component, Entry
 from arise.vocabulary import (
+    POINT_CLASSES,
     AdversaryManeuver,
     Approach,
     EgoManeuver,
@@ -382,6 +385,16 @@ def retrieve(
     return result
 
 
+_NEW_OBJECT = re.compile(r"\bnew (\w+)")
+
+
+def _created_classes(entry: Entry) -> frozenset[str]:
+    """The classes of road users and props an entry's snippet creates."""
+    return frozenset(
+        name for name in _NEW_OBJECT.findall(entry.snippet) if name not in POINT_CLASSES
+    )
+
+
 def _add_extras(
     spec: ScenarioSpec,
     kb: KnowledgeBase,
@@ -410,7 +423,14 @@ def _add_extras(
     misc_pool = [e for e in kb.of(Component.MISC) if fits(e)]
     chosen_misc: list[Entry] = []
     for participant in spec.participants[:MAX_MISC]:
-        for entry in _ranked(retriever, participant, Component.MISC, misc_pool)[:1]:
+        # Only an entry that places what the participant's words name: a bus stop is a
+        # prop, not a bus; nothing is added for a thing no entry places.
+        named = {mention.cls for mention in read_cast(participant).others}
+        same_kind = [e for e in misc_pool if _created_classes(e) and _created_classes(e) <= named]
+        picked = _ranked(retriever, participant, Component.MISC, same_kind)[:1]
+        if not picked:
+            result.notes.append(f"misc: no entry places {participant!r}; left out")
+        for entry in picked:
             if entry not in chosen_misc and not set(entry.defines) & defined:
                 chosen_misc.append(entry)
                 defined |= set(entry.defines)
