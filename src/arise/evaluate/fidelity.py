@@ -39,7 +39,7 @@ from arise.generate.conformity import (
     travel_heading,
     wrap,
 )
-from arise.validate.types import AgentTrace, CheckResult, SimulationFacts, TracePoint
+from arise.validate.types import AgentTrace, CheckResult, SimulationFacts, Stage, TracePoint
 from arise.vocabulary import (
     ACTOR_CLASSES,
     DEFAULT_WEATHER,
@@ -664,7 +664,9 @@ def score_fidelity(
     highway, multi-lane and map-feature objects cannot be told (None).
     """
     facts = check.simulation
-    if not check.ok or facts is None:
+    # A script the semantic gate found wanting still ran: its trace is what a user gets.
+    gated = check.diagnostic is not None and check.diagnostic.stage is Stage.SEMANTIC
+    if not (check.ok or gated) or facts is None:
         return Fidelity(executed=False)
     features = frozenset(map_features) if map_features is not None else None
     verdicts: list[Verdict] = []

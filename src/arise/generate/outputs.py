@@ -46,3 +46,24 @@ def write_script(folder: Path, script: str, ok: bool) -> Path:
 
 def write_attempt(folder: Path, index: int, script: str) -> None:
     write_atomic(folder / "attempts" / f"attempt-{index:02d}.scenic", script)
+
+
+def attempt_png(folder: Path, index: int) -> Path:
+    """Where the picture of attempt `index` is drawn."""
+    return folder / "attempts" / f"attempt-{index:02d}.png"
+
+
+def write_scene_picture(folder: Path, picture: Path) -> None:
+    """scene.png: the picture of the final script's attempt (none when it drew none)."""
+    target = folder / "scene.png"
+    if not picture.is_file():
+        target.unlink(missing_ok=True)
+        return
+    handle, temporary = tempfile.mkstemp(prefix=".scene.png.", dir=folder)
+    try:
+        with os.fdopen(handle, "wb") as out:
+            out.write(picture.read_bytes())
+        os.replace(temporary, target)
+    finally:
+        if os.path.exists(temporary):
+            os.unlink(temporary)

@@ -19,7 +19,13 @@ from arise.generate.conformity import (
 from arise.generate.events import Progress, RunFinished, RunStage, StageStarted, ignore
 from arise.generate.extract import check_description, extract_spec
 from arise.generate.options import GenerateOptions, Mode
-from arise.generate.outputs import write_attempt, write_report, write_script
+from arise.generate.outputs import (
+    attempt_png,
+    write_attempt,
+    write_report,
+    write_scene_picture,
+    write_script,
+)
 from arise.generate.repair import GatedValidate, RepairContext, Validate, repair_loop
 from arise.generate.retrieve import Retrieval, retrieve
 from arise.generate.rules import RuleContext
@@ -241,9 +247,15 @@ class Generator:
     def validator(self, out_dir: Path | None, spec: ScenarioSpec | None) -> Validate:
         """How the repair loop validates a script of this run: the check, then the semantic
         gate when it is on (arise mode, unless --no-semantic-gate)."""
-        options = self.check_options(str(out_dir / "scene.png") if out_dir else None)
+        checks = 0
 
         def validate(script: str) -> CheckResult:
+            # Each attempt's picture is kept (attempts/attempt-NN.png): the final script may
+            # be an earlier attempt than the last one checked, and scene.png must show it.
+            nonlocal checks
+            png = attempt_png(out_dir, checks) if out_dir else None
+            checks += 1
+            options = self.check_options(str(png) if png else None)
             if self._checker is not None:
                 return self._checker(script, options)
             return check_text(script, options, pool=self.pool, registry=self.registry)
@@ -336,6 +348,7 @@ class Generator:
             result = run.final_attempt  # the last, or the kept one that ran (semantic gate)
             if final and result is not None and result.script:
                 write_script(run.out_dir, result.script, result.executed)
+                write_scene_picture(run.out_dir, attempt_png(run.out_dir, result.index))
         write_report(run.out_dir, run.report())
 
 
