@@ -237,3 +237,11 @@ def test_without_a_named_road_user_the_model_type_is_marked_a_guess() -> None:
     fact = next(f for f in spec.grounding if f.name == "adversary_type")
     assert fact.source is FactSource.GUESS
     assert [p.split()[:2] for p in spec.participants] == [["Three", "cones"]]
+
+
+def test_only_facts_resting_on_words_are_held_against_a_script() -> None:
+    text = "Turning left, the ego meets a cyclist on the road it turns into."
+    spec = ground(text, answer(adversary="a cyclist", spawn_position="adjacent_lane_left")).spec
+    assert spec.rests_on_words("ego_maneuver")  # "Turning left"
+    assert spec.rests_on_words("adversary_type")  # "a cyclist"
+    assert not spec.rests_on_words("spawn_position")  # the model's guess: no words say it

@@ -46,6 +46,12 @@ __all__ = ["Generation", "Generator", "ReconfigureError", "generate", "slug"]
 SAMPLE_ITERATIONS = 250
 
 
+#: Gated checks about one fact of the spec: the gate holds a script to that fact only when
+#: the description states it (a model's guess or an unstated maneuver is no contradiction;
+#: the neutral weather is, since weather nobody asked for is a fault).
+GROUNDED_CHECKS = frozenset({"adversary_type", "spawn_position", "ego_maneuver", "road_type"})
+
+
 class ReconfigureError(AriseError):
     """A change `Generator.reconfigure` cannot honour (another model for a provider the
     caller gave): build another Generator."""
@@ -265,7 +271,12 @@ class Generator:
         gated_spec = spec
 
         def gate(result: CheckResult) -> list[Contradiction]:
-            return contradictions(self.conformity_of(gated_spec, result))
+            return [
+                found
+                for found in contradictions(self.conformity_of(gated_spec, result))
+                if found.check not in GROUNDED_CHECKS
+                or gated_spec.rests_on_words(found.check)
+            ]
 
         return GatedValidate(validate, gate)
 

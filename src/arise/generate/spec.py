@@ -11,7 +11,7 @@ from enum import StrEnum
 
 from pydantic import BaseModel, Field, field_validator
 
-from arise.generate.facts import GroundedFact
+from arise.generate.facts import FactSource, GroundedFact
 from arise.vocabulary import (
     DEFAULT_WEATHER,
     WEATHER_PRESETS,
@@ -92,6 +92,15 @@ class ScenarioSpec(BaseModel):
         default=None, description="the Scenic class the text names (Van, Bus, ...), if any"
     )
     grounding: list[GroundedFact] = Field(default_factory=list)
+
+    def rests_on_words(self, name: str) -> bool:
+        """Whether the fact `name` is backed by words of the description (read by a rule or
+        quoted by the model), so that a script contradicting it contradicts the text. A spec
+        without grounding (an older report) counts every fact as stated."""
+        sources = {fact.source for fact in self.grounding if fact.name == name}
+        if not self.grounding:
+            return True
+        return bool(sources & {FactSource.TEXT, FactSource.MODEL})
 
     @property
     def scenic_class(self) -> str:
