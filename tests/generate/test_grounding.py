@@ -245,3 +245,25 @@ def test_only_facts_resting_on_words_are_held_against_a_script() -> None:
     assert spec.rests_on_words("ego_maneuver")  # "Turning left"
     assert spec.rests_on_words("adversary_type")  # "a cyclist"
     assert not spec.rests_on_words("spawn_position")  # the model's guess: no words say it
+
+
+def test_an_unstated_road_is_an_ordinary_road_not_the_model_guess() -> None:
+    text = "A stalled hatchback sits in the ego's lane."
+    spec = ground(text, answer(adversary="A stalled hatchback", road_type="highway")).spec
+    assert spec.road_type.value == "straight_road"
+    fact = next(f for f in spec.grounding if f.name == "road_type")
+    assert fact.source is FactSource.DEFAULT
+
+
+def test_a_vehicle_from_a_side_road_comes_from_that_side_at_a_junction() -> None:
+    text = "A pickup from the side street to the ego's left pulls out in front of it."
+    spec = ground(text, answer(adversary="A pickup", spawn_position="adjacent_lane_left")).spec
+    assert spec.spawn_position is RelativePosition.CROSSING_FROM_LEFT
+    assert spec.road_type.value == "intersection"
+
+
+def test_a_walker_never_starts_in_a_traffic_lane_on_a_guess() -> None:
+    text = "Near a school a boy steps out between two parked cars."
+    spec = ground(text, answer(adversary="a boy", spawn_position="oncoming")).spec
+    assert spec.spawn_position is RelativePosition.ROADSIDE_RIGHT
+    assert [p.split()[:3] for p in spec.participants] == [["two", "parked", "cars"]]

@@ -127,6 +127,11 @@ def read_weather(description: str) -> GroundedFact:
 # -- sides and turns, attributed to an actor ------------------------------------------------
 
 _SIDE = r"(?:the |its |his |her |their |the ego's |the av's )?"
+# "from the side road on its right": a road user coming out of a road from that side.
+_SIDE_ROAD = (
+    r"(?:from|out of) (?:the |a )?(?:side road|side street|cross street|driveway|"
+    r"minor road|junction)(?: on| to)? "
+)
 # (position, pattern); the earliest cue in an actor's words wins, ties in this order.
 _POSITION_CUES: tuple[tuple[RelativePosition, str], ...] = (
     (
@@ -163,8 +168,11 @@ _POSITION_CUES: tuple[tuple[RelativePosition, str], ...] = (
         r"shoulder)|(?:parked|standing|stopped) (?:\w+ )?on the right|"
         r"right side of the (?:road|street)|at the curb|by the curb|at a bus stop",
     ),
-    (RelativePosition.CROSSING_FROM_LEFT, rf"from {_SIDE}left|from left"),
-    (RelativePosition.CROSSING_FROM_RIGHT, rf"from {_SIDE}right|from right"),
+    (RelativePosition.CROSSING_FROM_LEFT, rf"from {_SIDE}left|from left|{_SIDE_ROAD}{_SIDE}left"),
+    (
+        RelativePosition.CROSSING_FROM_RIGHT,
+        rf"from {_SIDE}right|from right|{_SIDE_ROAD}{_SIDE}right",
+    ),
     (
         RelativePosition.BEHIND_SAME_LANE,
         r"from behind|behind the (?:ego|av)|behind it\b|"
@@ -505,6 +513,15 @@ _REQUIREMENT_CONFLICTS: dict[RequirementKind, set[RelativePosition]] = {
         RelativePosition.CROSSING_FROM_RIGHT,
     },
 }
+_WALKER_STARTS = frozenset(
+    {
+        RelativePosition.ROADSIDE_LEFT,
+        RelativePosition.ROADSIDE_RIGHT,
+        RelativePosition.CROSSING_FROM_LEFT,
+        RelativePosition.CROSSING_FROM_RIGHT,
+        RelativePosition.AHEAD_SAME_LANE,
+    }
+)
 _CROSSING_SIDES = (RelativePosition.CROSSING_FROM_LEFT, RelativePosition.CROSSING_FROM_RIGHT)
 
 
@@ -542,9 +559,25 @@ def _road(
         AdversaryManeuver.TURN_RIGHT,
     ):
         return _fact("road_type", RoadType.INTERSECTION.value, FactSource.TEXT, turn.quote)
+    position = facts.get("spawn_position")
+    adversary = facts.get("adversary_class")
+    if (
+        position is not None
+        and position.source is FactSource.TEXT
+        and position.value in _CROSSING_SIDES
+        and adversary is not None
+        and is_vehicle(adversary.value)
+    ):  # a vehicle cannot come from the side on an open road
+        return _fact("road_type", RoadType.INTERSECTION.value, FactSource.TEXT, position.quote)
+    signal = re.search(
+        r"\b(?:red light|traffic lights?|signal\w*|stop sign|green light)\b", description, re.I
+    )
+    if signal is not None:
+        return _fact("road_type", RoadType.INTERSECTION.value, FactSource.TEXT, signal.group(0))
     if found is not None:
         return _fact("road_type", found[0], FactSource.TEXT, found[1])
-    return _model_fact("road_type", answer.road_type.value, description, answer.geometry)
+    # Unstated: an ordinary road, never the model's guess of a highway or a junction.
+    return _fact("road_type", RoadType.STRAIGHT.value, FactSource.DEFAULT)
 
 
 def _requirements(
@@ -603,9 +636,15 @@ def ground(description: str, answer: ExtractionAnswer) -> Grounded:
             "adversary_type", answer.adversary_type.value, description, answer.adversary
         )
     if "spawn_position" not in facts:
-        facts["spawn_position"] = _model_fact(
-            "spawn_position", answer.spawn_position.value, description, answer.spawn
-        )
+        if adversary_class == "Pedestrian" and answer.spawn_position not in _WALKER_STARTS:
+            # A walker does not start in a traffic lane: the near kerb, unless the text says.
+            facts["spawn_position"] = _fact(
+                "spawn_position", RelativePosition.ROADSIDE_RIGHT.value, FactSource.DEFAULT
+            )
+        else:
+            facts["spawn_position"] = _model_fact(
+                "spawn_position", answer.spawn_position.value, description, answer.spawn
+            )
     if "ego_maneuver" not in facts:
         facts["ego_maneuver"] = _fact(
             "ego_maneuver", EgoManeuver.GO_STRAIGHT.value, FactSource.DEFAULT
