@@ -31,6 +31,11 @@ def bug() -> None:
     raise ZeroDivisionError("division by zero")
 
 
+@demo.command()
+def piped() -> None:
+    raise BrokenPipeError(32, "Broken pipe")
+
+
 def test_an_arise_error_is_one_line_with_its_exit_code() -> None:
     result = runner.invoke(demo, ["mistake"])
     assert result.exit_code == 2
@@ -57,3 +62,11 @@ def test_usage_errors_stay_click_s(tmp_path: Path) -> None:
     assert result.exit_code == 2 and "No such option" in result.output
     missing = runner.invoke(app, ["kb", "search", "a car brakes", "--backend", "tfidf"])
     assert missing.exit_code == 2 and "unknown retrieval backend" in missing.output
+
+
+def test_a_closed_pipe_is_not_a_crash(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    # `arise ... | head` closes our output early: no crash report, no traceback.
+    monkeypatch.setenv("ARISE_CACHE_DIR", str(tmp_path))
+    result = runner.invoke(demo, ["piped"])
+    assert result.exit_code == 0
+    assert "crashed" not in result.output and not (tmp_path / "crashes").exists()

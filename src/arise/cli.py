@@ -66,6 +66,9 @@ class AriseGroup(TyperGroup):
         except AriseError as error:
             errors.print(f"[red]error:[/red] {escape(str(error))}", highlight=False)
             ctx.exit(error.exit_code)
+        except BrokenPipeError:  # `arise ... | head` closed our output: not a crash
+            _silence_stdout()
+            ctx.exit(0)
         except Exception as error:  # noqa: BLE001  (a bug: report it, do not dump it)
             try:
                 report = write_crash_report(error)
@@ -78,6 +81,15 @@ class AriseGroup(TyperGroup):
                 highlight=False,
             )
             ctx.exit(CRASH_EXIT)
+
+
+def _silence_stdout() -> None:
+    """Point stdout at /dev/null, so the interpreter's final flush does not fail again."""
+    try:
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+    except (OSError, ValueError):
+        pass
 
 
 app = typer.Typer(
