@@ -1,0 +1,127 @@
+"""`arise replay` and `arise export`: thin wrappers that print what the library wrote."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Annotated
+
+import typer
+from rich.console import Console
+from rich.markup import escape
+
+from arise.present.replay import write_replay
+from arise.present.source import TraceSource, load_trace
+from arise.present.tracefile import write_trace
+from arise.present.xosc import EgoMode, write_export
+
+console = Console(soft_wrap=True)
+
+REPLAY_HELP = """Draw the animated replay of a run: replay.gif and replay.html.
+
+TARGET is a run folder of `arise generate` (its saved trace.json is used; without one the
+script is checked again in the confined validator with the run's seed) or a .scenic script
+(checked in the confined validator first). replay.html is one self-contained page (no
+network) with play, pause, scrub, a clock and a legend beside the map.
+
+Examples:
+
+  arise replay out/demo
+
+  arise replay examples/pedestrian_crossing.scenic --out /tmp/crossing
+
+  arise replay out/demo --png        # also redraw scene.png with the same drawing
+"""
+
+EXPORT_HELP = """Export a run as ASAM OpenSCENARIO 1.2: scenario.xosc and the .xodr it references.
+
+Every agent becomes an entity (class, bounding box, CARLA blueprint) with its initial
+world position and speed and one timed FollowTrajectoryAction from the trace; the weather
+preset becomes the environment and the scenario stops when the trace ends. With
+`--ego free` the ego keeps its start but no trajectory: the system under test drives it.
+TARGET is a run folder or a .scenic script, as for `arise replay`. See docs/export.md.
+
+Examples:
+
+  arise export out/demo
+
+  arise export out/demo --ego free --out /tmp/demo-sut
+
+  arise export examples/pedestrian_crossing.scenic --out /tmp/crossing
+"""
+
+TargetArgument = Annotated[
+    Path, typer.Argument(help="A run folder (scenario.scenic + report.json) or a .scenic script.")
+]
+OutOption = Annotated[
+    Path | None,
+    typer.Option(
+        "--out",
+        "-o",
+        help="Folder for the files (default: the run folder; for a script, a folder named "
+        "after it beside it).",
+    ),
+]
+MapDirOption = Annotated[
+    str | None,
+    typer.Option(help="Folder of extra .xodr maps, e.g. CARLA towns (env ARISE_MAP_DIR)."),
+]
+
+
+def _out_dir(target: Path, out: Path | None) -> Path:
+    if out is not None:
+        return out
+    return target if target.is_dir() else target.with_suffix("")
+
+
+def _say_source(source: TraceSource) -> None:
+    console.print(
+        f"trace: {source.origin.value}, {source.simulation.steps} steps, "
+        f"{len(source.simulation.agents)} agents"
+        + (f", map {escape(source.map.name)}" if source.map else "")
+    )
+    for note in source.notes:
+        console.print(f"  note: {escape(note)}")
+
+
+def replay_command(
+    target: TargetArgument,
+    out: OutOption = None,
+    png: Annotated[
+        bool, typer.Option("--png", help="Also write scene.png, the still at the interaction.")
+    ] = False,
+    map_dir: MapDirOption = None,
+) -> None:
+    source = load_trace(target, map_dir=map_dir)
+    _say_source(source)
+    folder = _out_dir(target, out)
+    write_trace(folder, source.saved())
+    files = write_replay(source, folder, still=png, map_dir=map_dir)
+    for path in (files.gif, files.html, files.png):
+        if path is not None:
+            console.print(f"wrote {escape(str(path))} ({path.stat().st_size // 1024} KiB)")
+
+
+def export_command(
+    target: TargetArgument,
+    out: OutOption = None,
+    ego: Annotated[
+        EgoMode,
+        typer.Option(
+            help="replay: the ego follows its trace; free: the system under test drives it."
+        ),
+    ] = EgoMode.REPLAY,
+    map_dir: MapDirOption = None,
+) -> None:
+    source = load_trace(target, map_dir=map_dir)
+    _say_source(source)
+    folder = _out_dir(target, out)
+    write_trace(folder, source.saved())
+    files = write_export(source, folder, ego, map_dir=map_dir)
+    console.print(
+        f"wrote {escape(str(files.xosc))} (OpenSCENARIO 1.2, "
+        f"{sum(files.vertices.values())} trajectory vertices for {len(files.vertices)} agents)"
+    )
+    if files.xodr is not None:
+        console.print(f"wrote {escape(str(files.xodr))} (the map it references)")
+    for note in files.notes:
+        console.print(f"  note: {escape(note)}")
