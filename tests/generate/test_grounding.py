@@ -267,3 +267,21 @@ def test_a_walker_never_starts_in_a_traffic_lane_on_a_guess() -> None:
     spec = ground(text, answer(adversary="a boy", spawn_position="oncoming")).spec
     assert spec.spawn_position is RelativePosition.ROADSIDE_RIGHT
     assert [p.split()[:3] for p in spec.participants] == [["two", "parked", "cars"]]
+
+
+@pytest.mark.parametrize(
+    ("text", "stationary"),
+    [
+        ("A removal van is parked in the ego's lane ahead.", True),
+        ("A stalled hatchback sits across the lane.", True),
+        ("The ego reaches a taxi stopped in its lane.", True),
+        ("A parked taxi pulls out in front of the ego.", False),
+        ("The taxi ahead stopped suddenly.", False),
+        ("A taxi ahead brakes to a stop.", False),
+    ],
+)
+def test_an_adversary_that_stays_put_is_read_from_its_own_words(
+    text: str, stationary: bool
+) -> None:
+    spec = ground(text, answer(adversary="taxi" if "taxi" in text else "")).spec
+    assert spec.adversary_stationary is stationary

@@ -11,6 +11,7 @@ from collections.abc import Mapping
 import pytest
 
 from arise.generate.retrieve import (
+    STATIONARY_TAGS,
     Fit,
     approach_fit,
     maneuver_fit,
@@ -289,3 +290,15 @@ def test_a_contradicting_entry_is_the_last_resort_and_says_so() -> None:
     )
     assert result.ids()["geometry"] == ["geometry.from_left"]
     assert any("not honoured" in note for note in result.notes)
+
+
+@pytest.mark.parametrize("road", ["straight_road", "intersection"])
+def test_an_adversary_the_text_says_is_stalled_gets_a_behavior_that_stays_put(
+    kb: KnowledgeBase, bm25: BM25Retriever, road: str
+) -> None:
+    spec = make_spec(RelativePosition.AHEAD_SAME_LANE, road=road).model_copy(
+        update={"adversary_stationary": True, "behavior": "drives on and accelerates"}
+    )
+    result = retrieve(spec, kb, bm25, MAPS)
+    [behavior] = result.chosen[Component.BEHAVIOR]
+    assert set(behavior.tags) & STATIONARY_TAGS, behavior.id

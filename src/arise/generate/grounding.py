@@ -402,6 +402,37 @@ def read_maneuvers(reading: Reading) -> None:
         )
 
 
+_STATIONARY = re.compile(
+    r"\b(?:parked|double[- ]parked|stalled|broken[- ]down|stationary|abandoned|"
+    r"(?:is |was |sits |stands |standing )?stopped|sits|lies|lying|standing still|"
+    r"at a standstill|not moving)\b",
+    re.I,
+)
+_MOVING = re.compile(
+    r"\b(?:pulls?|pulled|start\w*|accelerat\w*|moves?|moving|drives?|driving|turns?|"
+    r"turning|cross\w*|runs?|running|rides?|riding|walks?|walking|steps?|swerv\w*|"
+    r"merg\w*|cuts?|reverses?|backs?|rolls?|speeds?|brakes?|braking|slows?|suddenly|"
+    r"abruptly|sharply|hard)\b",
+    re.I,
+)
+
+
+def read_stationary(cast: Cast, mention: Mention) -> GroundedFact | None:
+    """Whether the words about `mention` say it stays put for the whole scene ("a truck
+    parked in its lane", "a stalled car"), and move it nowhere ("a parked car pulls out")."""
+    for start, end in _words_of(cast, mention):
+        words = cast.text[start:end]
+        still = _STATIONARY.search(words)
+        if still and not _MOVING.search(words):
+            return GroundedFact(
+                name="adversary_stationary",
+                value="true",
+                source=FactSource.TEXT,
+                quote=still.group(0),
+            )
+    return None
+
+
 # -- who is the adversary -------------------------------------------------------------------
 
 _CLASS_TYPE = {
@@ -465,6 +496,9 @@ def read_description(description: str, adversary_quote: str | None = None) -> Re
         position = read_compass(cast, adversary) or read_position(cast, adversary)
         if position is not None:
             reading.facts["spawn_position"] = position
+        stationary = read_stationary(cast, adversary)
+        if stationary is not None:
+            reading.facts["adversary_stationary"] = stationary
     read_maneuvers(reading)
     return reading
 
@@ -702,6 +736,7 @@ def ground(description: str, answer: ExtractionAnswer) -> Grounded:
         spawn_position=position,
         spawn=free_text["spawn"],
         adversary_maneuver=AdversaryManeuver(facts["adversary_maneuver"].value),
+        adversary_stationary="adversary_stationary" in facts,
         participants=participants,
         weather=facts["weather"].value,
         requirements=requirements,

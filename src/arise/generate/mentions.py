@@ -236,12 +236,19 @@ def _same_thing(found: list[Mention], cls: str, before: str, word: str) -> Menti
     return None
 
 
+_DETERMINER = re.compile(
+    r"^(?:an?|the|another|two|three|four|five|six|\d|one|some|its|their)$", re.I
+)
+
+
 def phrase_start(text: str, start: int) -> int:
-    """Where the noun phrase of the noun at `start` begins (its article or number)."""
+    """Where the noun phrase of the noun at `start` begins: the nearest article or number
+    at most three words before it ("a parked delivery van"), else the noun itself."""
     before = text[max(0, start - 40) : start]
-    match = re.search(
-        r"(?:\b(?:an?|the|another|two|three|four|five|six|\d|one|some)\s+(?:[\w'-]+\s+){0,3})$",
-        before,
-        re.I,
-    )
-    return start - len(match.group(0)) if match else start
+    words = list(re.finditer(r"[\w'-]+", before))[-4:]
+    for word in reversed(words):
+        if re.search(r"[.;,!?]", before[word.end() :]):
+            break  # the phrase does not reach across punctuation
+        if _DETERMINER.match(word.group(0)):
+            return max(0, start - 40) + word.start()
+    return start

@@ -274,8 +274,7 @@ class Generator:
             return [
                 found
                 for found in contradictions(self.conformity_of(gated_spec, result))
-                if found.check not in GROUNDED_CHECKS
-                or gated_spec.rests_on_words(found.check)
+                if found.check not in GROUNDED_CHECKS or gated_spec.rests_on_words(found.check)
             ]
 
         return GatedValidate(validate, gate)

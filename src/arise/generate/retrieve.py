@@ -90,6 +90,8 @@ SIDE_APPROACHES: dict[RelativePosition, tuple[frozenset[Approach], frozenset[App
     ),
 }
 MAX_MISC = 3
+#: Behavior tags of an adversary that does not move (stalled, parked as a hazard).
+STATIONARY_TAGS = frozenset({"static", "stalled"})
 #: Components whose candidate lists are pools to drop from, not ranked fall-backs.
 POOLED = (Component.MISC, Component.REQUIREMENTS)
 
@@ -340,14 +342,25 @@ def retrieve(
         Component.BEHAVIOR,
         [e for e in kb.of(Component.BEHAVIOR) if e.suits(adversary)],
     )
+    pools = [behaviors]
+    if spec.adversary_stationary:
+        # Parked, stalled or stopped in the text: a behavior that stays put, if one fits.
+        pools.insert(0, [e for e in behaviors if set(e.tags) & STATIONARY_TAGS])
     core = next(
         (
             found
+            for pool in pools
             for fit in Fit
-            if (found := _first_core(spec, geometries, spawns, behaviors, fit, fits_a_map))
+            if (found := _first_core(spec, geometries, spawns, pool, fit, fits_a_map))
         ),
         None,
     )
+    if (
+        core is not None
+        and spec.adversary_stationary
+        and not set(core.behaviors[0].tags) & STATIONARY_TAGS
+    ):
+        result.notes.append("no behavior that stays put fits; the adversary moves")
     if core is None:
         result.notes.append(f"no compatible geometry/spawn/behavior for a {adversary}")
         return result

@@ -83,6 +83,9 @@ class ScenarioSpec(BaseModel):
         default=AdversaryManeuver.UNSTATED,
         description="which way the adversary goes through a junction, if the text says",
     )
+    adversary_stationary: bool = Field(
+        default=False, description="the text says the adversary is parked, stalled or stopped"
+    )
     participants: list[str] = Field(
         default_factory=list, description="other road users and objects, one per item"
     )
