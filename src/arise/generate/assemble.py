@@ -34,7 +34,7 @@ class Draft:
     script: str
     entries: list[Entry]
     map_name: str
-    adversary_class: str
+    adversary_class: str | None  # None: the scene has no adversary
     params: dict[str, str] = field(default_factory=dict)  # tuned values actually used
     notes: list[str] = field(default_factory=list)
 
@@ -129,7 +129,7 @@ def _describe(entries: list[Entry], entry_id: str) -> str:
 
 def assemble(
     retrieval: Retrieval,
-    adversary_class: str,
+    adversary_class: str | None,
     description: str,
     params: Mapping[str, str] | None = None,
 ) -> Draft:

@@ -303,16 +303,21 @@ def check_conformity(
         add(ConformityCheck("executed", "a simulation", "none", False))
         return result
     ego = next((a for a in facts.agents if a.is_ego), None)
-    adversary = find_adversary(facts.agents)
-    expected_class = spec.scenic_class
-    add(
-        ConformityCheck(
-            "adversary_type",
-            expected_class,
-            adversary.kind if adversary else "no adversary",
-            adversary is not None and adversary.kind == expected_class,
+    if spec.no_adversary:  # props and parked cars are not an adversary
+        adversary = next((a for a in facts.agents if a.behavior == "AdversaryBehavior"), None)
+        observed = adversary.kind if adversary else "no adversary"
+        add(ConformityCheck("adversary_type", "no adversary", observed, adversary is None))
+    else:
+        adversary = find_adversary(facts.agents)
+        expected_class = spec.scenic_class
+        add(
+            ConformityCheck(
+                "adversary_type",
+                expected_class,
+                adversary.kind if adversary else "no adversary",
+                adversary is not None and adversary.kind == expected_class,
+            )
         )
-    )
     if ego is not None:
         maneuver = ego_maneuver(ego)
         add(

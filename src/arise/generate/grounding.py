@@ -669,6 +669,11 @@ def ground(description: str, answer: ExtractionAnswer) -> Grounded:
         facts["adversary_type"] = _model_fact(
             "adversary_type", answer.adversary_type.value, description, answer.adversary
         )
+    no_adversary = not any(adversary_type_of(m.cls) for m in reading.cast.others)
+    if no_adversary:
+        facts["adversary"] = _fact(
+            "adversary", "none (the description names no other road user)", FactSource.DEFAULT
+        )
     if "spawn_position" not in facts:
         if adversary_class == "Pedestrian" and answer.spawn_position not in _WALKER_STARTS:
             # A walker does not start in a traffic lane: the near kerb, unless the text says.
@@ -737,6 +742,7 @@ def ground(description: str, answer: ExtractionAnswer) -> Grounded:
         spawn=free_text["spawn"],
         adversary_maneuver=AdversaryManeuver(facts["adversary_maneuver"].value),
         adversary_stationary="adversary_stationary" in facts,
+        no_adversary=no_adversary,
         participants=participants,
         weather=facts["weather"].value,
         requirements=requirements,

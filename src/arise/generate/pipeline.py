@@ -301,7 +301,7 @@ class Generator:
                 spec, self.kb, self.retriever, self.maps, run.description, topk=options.topk
             )
         emit(StageStarted(RunStage.ASSEMBLE))
-        adversary = spec.scenic_class
+        adversary = None if spec.no_adversary else spec.scenic_class
         try:
             params: dict[str, str] = {}
             if options.mode is not Mode.CHATSCENE and run.retrieval.chosen:
@@ -330,7 +330,7 @@ class Generator:
                 temperature=options.temperature,
                 seed=options.seed,
                 rules=RuleContext(
-                    adversary_class=adversary,
+                    adversary_class=adversary or spec.scenic_class,
                     param_defaults={
                         name: default
                         for name, (default, _) in declared_params(list(self.kb)).items()

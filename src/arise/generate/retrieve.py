@@ -326,6 +326,10 @@ def retrieve(
         Component.GEOMETRY,
         geometry_pool,
     )
+    if spec.no_adversary:
+        return _scene_without_adversary(
+            spec, kb, retriever, maps, choose_map, result, geometries, query, topk
+        )
     spawn_tags = set(SPAWN_TAGS[spec.spawn_position])
     spawns = _prefer(
         _ranked(
@@ -392,6 +396,34 @@ def retrieve(
         defined | set(spawn.defines) | set(core.behaviors[0].defines),
         query,
     )
+    result.map_name = choose_map(result.chosen_entries(), maps)
+    if topk is not None:
+        result.keep(topk)
+    return result
+
+
+def _scene_without_adversary(
+    spec: ScenarioSpec,
+    kb: KnowledgeBase,
+    retriever: Retriever,
+    maps: Mapping[str, frozenset[str]],
+    choose_map: Callable[[list[Entry], Mapping[str, frozenset[str]]], str | None],
+    result: Retrieval,
+    geometries: list[Entry],
+    query: Callable[[str], str],
+    topk: int | None,
+) -> Retrieval:
+    """The text names no road user that causes the danger (debris, cones, a slippery road):
+    a geometry, the named objects and the weather; no spawn, no behavior."""
+    if not geometries:
+        result.notes.append("no geometry entry fits")
+        return result
+    geometry = geometries[0]
+    result.candidates[Component.GEOMETRY] = geometries
+    result.chosen = {Component.GEOMETRY: [geometry]}
+    result.notes.append("the description names no adversary: the scene has none")
+    _add_extras(spec, kb, retriever, maps, choose_map, result, set(geometry.defines), query)
+    result.chosen[Component.REQUIREMENTS] = []  # requirements are about an adversary
     result.map_name = choose_map(result.chosen_entries(), maps)
     if topk is not None:
         result.keep(topk)

@@ -83,6 +83,10 @@ class ScenarioSpec(BaseModel):
         default=AdversaryManeuver.UNSTATED,
         description="which way the adversary goes through a junction, if the text says",
     )
+    no_adversary: bool = Field(
+        default=False,
+        description="the text names no road user that causes the danger (debris, a slippery road)",
+    )
     adversary_stationary: bool = Field(
         default=False, description="the text says the adversary is parked, stalled or stopped"
     )

@@ -19,6 +19,7 @@ from arise.vocabulary import ADVERSARY_CLASSES, REFINED_CLASSES
 
 SINGLE = (Component.BEHAVIOR, Component.GEOMETRY, Component.SPAWN)  # exactly one each
 OPTIONAL_SINGLE = (Component.WEATHER,)  # at most one
+ADVERSARY_COMPONENTS = (Component.BEHAVIOR, Component.SPAWN)  # absent when there is none
 ENTRY_MARK = re.compile(r"^# kb: (\S+)\s*$")
 DEFAULT_TERMINATE_SECONDS = 20.0
 
@@ -47,14 +48,16 @@ def header(map_name: str) -> str:
     )
 
 
-def composition_problems(entries: Sequence[Entry], adversary_class: str) -> list[str]:
-    """Why these entries would not make a script (empty when they would)."""
+def composition_problems(entries: Sequence[Entry], adversary_class: str | None) -> list[str]:
+    """Why these entries would not make a script (empty when they would). A scene without
+    an adversary (`adversary_class` None) has a geometry and no spawn or behavior."""
     problems: list[str] = []
-    adversary_class = REFINED_CLASSES.get(adversary_class, adversary_class)  # a Van fits as a Car
-    if adversary_class not in ADVERSARY_CLASSES:
-        problems.append(
-            f"adversary class {adversary_class!r} is not one of {', '.join(ADVERSARY_CLASSES)}"
-        )
+    if adversary_class is not None:
+        adversary_class = REFINED_CLASSES.get(adversary_class, adversary_class)  # Van ~ Car
+        if adversary_class not in ADVERSARY_CLASSES:
+            problems.append(
+                f"adversary class {adversary_class!r} is not one of {', '.join(ADVERSARY_CLASSES)}"
+            )
     ids = [entry.id for entry in entries]
     for duplicate in sorted({i for i in ids if ids.count(i) > 1}):
         problems.append(f"{duplicate}: chosen twice")
@@ -62,10 +65,16 @@ def composition_problems(entries: Sequence[Entry], adversary_class: str) -> list
         chosen = [e.id for e in entries if e.component is component]
         if len(chosen) > 1:
             problems.append(f"{', '.join(chosen)}: only one {component.value} entry fits")
-        elif not chosen and component in SINGLE:
+        elif adversary_class is None and chosen and component in ADVERSARY_COMPONENTS:
+            problems.append(f"{chosen[0]}: a scene without an adversary has no {component.value}")
+        elif (
+            not chosen
+            and component in SINGLE
+            and (adversary_class is not None or component not in ADVERSARY_COMPONENTS)
+        ):
             problems.append(f"no {component.value} entry was chosen")
     for entry in entries:
-        if not entry.suits(adversary_class):
+        if adversary_class is not None and not entry.suits(adversary_class):
             problems.append(
                 f"{entry.id}: written for {', '.join(entry.adversaries)}, not {adversary_class}"
             )
@@ -123,7 +132,7 @@ def fill_placeholders(snippet: str, values: Mapping[str, str], entry_id: str) ->
 
 def compose(
     entries: Sequence[Entry],
-    adversary_class: str,
+    adversary_class: str | None,
     map_name: str,
     *,
     description: str | None = None,
@@ -136,7 +145,7 @@ def compose(
         any number of misc and requirements entries (in the order given).
     adversary_class: what `{{ADVERSARY_CLASS}}` becomes (Car, Truck, Motorcycle, Bicycle,
         Pedestrian, or Van and Bus, which fit where a Car and a Truck do); every entry must
-        suit it.
+        suit it. None: the scene has no adversary (no spawn or behavior entry).
     map_name: a map known to the registry (`arise maps list`); pick one with `pick_map`.
     placeholders: values for any other `{{NAME}}` the entries declare.
     terminate_after: seconds after which the scenario ends, unless a requirements entry
@@ -147,7 +156,9 @@ def compose(
     problems = composition_problems(entries, adversary_class)
     if problems:
         raise ComposeError(problems)
-    values = {"ADVERSARY_CLASS": adversary_class, **(placeholders or {})}
+    values = dict(placeholders or {})
+    if adversary_class is not None:
+        values.setdefault("ADVERSARY_CLASS", adversary_class)
     lines: list[str] = []
     if description:
         lines += ["# " + line if line else "#" for line in description.strip().splitlines()]
