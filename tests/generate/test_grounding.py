@@ -8,15 +8,12 @@ from __future__ import annotations
 import pytest
 
 from arise.generate.facts import FactSource
-from arise.generate.grounding import (
-    find_quote,
-    ground,
-    quote_in,
-    read_description,
-    read_weather,
-)
+from arise.generate.grounding import ground
 from arise.generate.mentions import read_cast
+from arise.generate.quotes import find_quote, quote_in
+from arise.generate.readers import read_description
 from arise.generate.spec import ExtractionAnswer
+from arise.generate.weather_words import read_weather
 from arise.vocabulary import AdversaryManeuver, AdversaryType, EgoManeuver, RelativePosition
 
 

@@ -1,0 +1,392 @@
+"""Fixed readers of a description: who the adversary is, where it starts, which way it and
+the ego go, whether it stays put, each fact with the words it rests on.
+
+Every reader looks only at the words about one actor (`words_of`): a side said of a parked
+truck is not the pedestrian's side, and "the other car turns left" is not the ego's turn.
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass, field
+
+from arise.generate.facts import FactSource, GroundedFact
+from arise.generate.mentions import VEHICLE_CLASSES, Cast, Mention, phrase_start, read_cast
+from arise.generate.quotes import find_quote
+from arise.generate.weather_words import read_weather
+from arise.vocabulary import AdversaryManeuver, AdversaryType, EgoManeuver, RelativePosition
+
+_SIDE = r"(?:the |its |his |her |their |the ego's |the av's )?"
+# "from the side road on its right": a road user coming out of a road from that side.
+_SIDE_ROAD = (
+    r"(?:from|out of) (?:the |a )?(?:side road|side street|cross street|driveway|"
+    r"minor road|junction)(?: on| to)? "
+)
+# (position, pattern); the earliest cue in an actor's words wins, ties in this order.
+_POSITION_CUES: tuple[tuple[RelativePosition, str], ...] = (
+    (
+        RelativePosition.ONCOMING,
+        r"oncoming|coming the other way|from the opposite direction|"
+        r"in the opposite direction|opposite direction|head[- ]on|coming towards?|"
+        r"approaching from the front|travell?ing towards? the (?:ego|av)",
+    ),
+    (
+        RelativePosition.ADJACENT_LANE_LEFT,
+        rf"(?:from |coming up )?behind on {_SIDE}left|"
+        rf"in {_SIDE}left lane|lane to {_SIDE}left|left[- ]hand lane|left adjacent lane|"
+        r"adjacent left lane|overtak\w+ (?:the ego |the av |it )?on (?:its|the) left|"
+        rf"(?:on|in|from) {_SIDE}left[- ]front|alongside on {_SIDE}left|on {_SIDE}left side of "
+        r"the (?:ego|av)",
+    ),
+    (
+        RelativePosition.ADJACENT_LANE_RIGHT,
+        rf"(?:from |coming up )?behind on {_SIDE}right|"
+        rf"in {_SIDE}right lane|lane to {_SIDE}right|right[- ]hand lane|right adjacent lane|"
+        r"adjacent right lane|bike lane|overtak\w+ (?:the ego |the av |it )?on (?:its|the) right|"
+        rf"(?:on|in|from) {_SIDE}right[- ]front|alongside on {_SIDE}right|on {_SIDE}right side "
+        r"of the (?:ego|av)",
+    ),
+    (
+        RelativePosition.ROADSIDE_LEFT,
+        r"left (?:sidewalk|pavement|kerb|curb|corner|roadside|"
+        r"shoulder)|opposite (?:sidewalk|pavement|side of the (?:road|street))|far side|"
+        r"parked (?:\w+ )?on the left|left side of the (?:road|street)",
+    ),
+    (
+        RelativePosition.ROADSIDE_RIGHT,
+        r"right (?:sidewalk|pavement|kerb|curb|corner|roadside|"
+        r"shoulder)|(?:parked|standing|stopped) (?:\w+ )?on the right|"
+        r"right side of the (?:road|street)|at the curb|by the curb|at a bus stop",
+    ),
+    (RelativePosition.CROSSING_FROM_LEFT, rf"from {_SIDE}left|from left|{_SIDE_ROAD}{_SIDE}left"),
+    (
+        RelativePosition.CROSSING_FROM_RIGHT,
+        rf"from {_SIDE}right|from right|{_SIDE_ROAD}{_SIDE}right",
+    ),
+    (
+        RelativePosition.BEHIND_SAME_LANE,
+        r"from behind|behind the (?:ego|av)|behind it\b|"
+        r"following the (?:ego|av)|approaching from the rear|rear[- ]end\w*",
+    ),
+    (
+        RelativePosition.AHEAD_SAME_LANE,
+        r"ahead in (?:the same|its|the ego's|the av's) lane|"
+        r"in (?:its|the ego's|the av's|the same) lane|in front of the (?:ego|av)|ahead of "
+        r"(?:the ego|the av|it|them)|lead(?:ing)? \w+|riding ahead|driving ahead|"
+        r"stopped ahead|ahead,? in|edge of (?:its|the ego's|the av's) lane|"
+        r"following (?:a|an)|following the (?!ego|av)",
+    ),
+)
+# The lane the ego moves into ("a car coming up in that lane"): resolved by the ego's own
+# lane change ("moves into the left lane").
+_TARGET_LANE = re.compile(
+    r"\b(?:in|into) (?:that|the target) lane\b|\bthe lane (?:the ego|the av|it) "
+    r"(?:enters|is entering|moves into|changes into|merges into)\b",
+    re.I,
+)
+_EGO_LANE_SIDE = re.compile(
+    r"\b(?:chang\w*|mov\w*|merg\w*|pull\w*|steer\w*|swerv\w*)(?: \w+){0,2} "
+    r"(?:in)?to (?:the )?(left|right)(?: lane|\b)",
+    re.I,
+)
+# "on the right"/"on its left" alone: a lane for a vehicle, the roadside for a walker.
+_BARE_SIDE = re.compile(rf"\b(?:on|to) {_SIDE}(left|right)\b(?![- ]turn)", re.I)
+
+_TURN = re.compile(
+    r"\b(?:turns?|turning|turned|to turn|makes? an? (?:unprotected )?|making an? "
+    r"(?:unprotected )?|takes? an? |performs? an? (?:unprotected )?)\s*(left|right)\b|"
+    r"(?<!from the )(?<!from its )\b(?:unprotected )?(left|right)[- ]turn(?:ing|s)?\b"
+    r"(?!\s+(?:left|right))|\bunprotected (left)\b",
+    re.I,
+)
+_STRAIGHT = re.compile(
+    r"\b(?:go(?:es|ing)?|continu\w*|driv\w*|head\w*|proceed\w*|keep\w*(?: going)?|"
+    r"went|carr\w+ on|travel\w*) straight\b|\bstraight (?:through|across|ahead|on)\b|"
+    r"\bdoes not turn\b|\b(?:cross\w*|pass\w*|go\w* through|driv\w* through) (?:an?|the) "
+    r"(?:\w+ )?(?:intersection|junction|crossroads)\b|\bkeeps? (?:to )?(?:its|the) lane\b",
+    re.I,
+)
+_LANE_CHANGE = re.compile(
+    r"\bchang\w* (?:in)?to (?:the )?(?:left|right|adjacent|next|other|oncoming) lane|"
+    r"\bchang\w* lanes?\b|\bmoves? (?:over )?into (?:the )?(?:left|right|oncoming|adjacent|"
+    r"next) lane|\bpulls? (?:out )?into (?:the )?(?:left|right|oncoming|opposite) lane|"
+    r"\bswerves? into (?:the )?(?:left|right|adjacent|next) lane",
+    re.I,
+)
+
+
+@dataclass
+class Reading:
+    """What the fixed rules read from one description, each with its words."""
+
+    cast: Cast
+    adversary: Mention | None = None
+    facts: dict[str, GroundedFact] = field(default_factory=dict)
+    notes: list[str] = field(default_factory=list)
+
+
+def words_of(cast: Cast, mention: Mention) -> list[tuple[int, int]]:
+    """The stretches of text about `mention`: from a few words before each of its spans to
+    the next named actor or the end of the sentence."""
+    text = cast.text
+    stretches = []
+    starts = sorted(phrase_start(text, s.start) for m in cast.others for s in m.spans)
+    for span in mention.spans:
+        lead = phrase_start(text, span.start)
+        end = next((s for s in starts if s > span.end), len(text))
+        found = re.search(r"[.;!?](?:\s|$)", text[span.end :])
+        sentence_end = span.end + found.start() if found else len(text)
+        stretches.append((lead, min(end, sentence_end)))
+    return stretches
+
+
+def read_position(cast: Cast, mention: Mention) -> GroundedFact | None:
+    """Where `mention` starts, seen from the ego, from the words about it."""
+    best: tuple[int, int, RelativePosition, str] | None = None
+    for start, end in words_of(cast, mention):
+        words = cast.text[start:end]
+        for order, (position, pattern) in enumerate(_POSITION_CUES):
+            match = re.search(rf"\b(?:{pattern})\b", words, re.I)
+            if match and (best is None or (start + match.start(), order) < best[:2]):
+                best = (start + match.start(), order, position, match.group(0))
+        bare = _BARE_SIDE.search(words)
+        if bare and best is None:
+            side = bare.group(1).lower()
+            walker = mention.cls in ("Pedestrian",) or mention.is_prop
+            position = (
+                (
+                    RelativePosition.ROADSIDE_LEFT
+                    if side == "left"
+                    else RelativePosition.ROADSIDE_RIGHT
+                )
+                if walker
+                else (
+                    RelativePosition.ADJACENT_LANE_LEFT
+                    if side == "left"
+                    else RelativePosition.ADJACENT_LANE_RIGHT
+                )
+            )
+            best = (start + bare.start(), 99, position, bare.group(0))
+        target = _TARGET_LANE.search(words)
+        lane_side = _EGO_LANE_SIDE.search(cast.text)
+        if target and lane_side and (best is None or start + target.start() < best[0]):
+            position = (
+                RelativePosition.ADJACENT_LANE_LEFT
+                if lane_side.group(1).lower() == "left"
+                else RelativePosition.ADJACENT_LANE_RIGHT
+            )
+            best = (
+                start + target.start(),
+                -1,
+                position,
+                f"{lane_side.group(0)} ... {target.group(0)}",
+            )
+    if best is None:
+        return None
+    return GroundedFact(
+        name="spawn_position", value=best[2].value, source=FactSource.TEXT, quote=best[3]
+    )
+
+
+_COMPASS = {"north": 0, "east": 90, "south": 180, "west": 270}
+_BOUND = re.compile(
+    r"\b(north|east|south|west)(?:bound|ward)\b|\bfrom (?:north|east|south|west) to "
+    r"(north|east|south|west)\b",
+    re.I,
+)
+
+
+def _bearing(found: re.Match[str]) -> int:
+    word = found.group(1) or found.group(2)
+    return _COMPASS[word.lower()]
+
+
+def read_compass(cast: Cast, mention: Mention) -> GroundedFact | None:
+    """A side from compass words ("the AV was northbound; an eastbound car"), as crash
+    reports give them: the ego's bearing from its own words, the actor's from its words."""
+    ego_bearing = None
+    for span in cast.ego:
+        after = cast.text[span.end : span.end + 60]
+        found = _BOUND.search(after)
+        if found and not re.search(r"[.;]", after[: found.start()]):
+            ego_bearing = _bearing(found)
+            break
+    if ego_bearing is None:
+        return None
+    for start, end in words_of(cast, mention):
+        words = cast.text[max(0, start - 15) : end]
+        found = _BOUND.search(words)
+        if not found:
+            continue
+        relative = (_bearing(found) - ego_bearing) % 360
+        position = {
+            90: RelativePosition.CROSSING_FROM_LEFT,
+            180: RelativePosition.ONCOMING,
+            270: RelativePosition.CROSSING_FROM_RIGHT,
+        }.get(relative)
+        if position is not None:
+            return GroundedFact(
+                name="spawn_position",
+                value=position.value,
+                source=FactSource.TEXT,
+                quote=found.group(0),
+            )
+    return None
+
+
+def _subject(cast: Cast, position: int) -> Mention | str | None:
+    """Who a verb at `position` is about: the actor named last before it in its sentence,
+    or, for a leading participle ("Turning left at ..., the ego ..."), the one after it."""
+    head = cast.text[:position]
+    sentence_start = max(head.rfind(c) for c in ".;!?") + 1
+    if not head[sentence_start:].strip() or re.fullmatch(
+        r"\s*(?:while |when |as |after |before )?", head[sentence_start:], re.I
+    ):
+        return cast.subject_after(position)
+    return cast.subject_before(position)
+
+
+def read_maneuvers(reading: Reading) -> None:
+    """The ego's maneuver and the adversary's turn, each from verbs about that actor."""
+    cast = reading.cast
+    ego: tuple[EgoManeuver, str] | None = None
+    adversary: tuple[AdversaryManeuver, str] | None = None
+    found: list[tuple[int, str, str]] = []
+    for match in _TURN.finditer(cast.text):
+        side = next(g for g in match.groups() if g).lower()
+        found.append((match.start(), f"turn_{side}", match.group(0)))
+    for match in _STRAIGHT.finditer(cast.text):
+        found.append((match.start(), "straight", match.group(0)))
+    for match in _LANE_CHANGE.finditer(cast.text):
+        found.append((match.start(), "change_lane", match.group(0)))
+    for position, kind, words in sorted(found):
+        subject = _subject(cast, position)
+        if subject is None and re.match(r"unprotected", words, re.I):
+            subject = "ego"
+        if subject == "ego" and ego is None:
+            maneuver = {
+                "turn_left": EgoManeuver.TURN_LEFT,
+                "turn_right": EgoManeuver.TURN_RIGHT,
+                "straight": EgoManeuver.GO_STRAIGHT,
+                "change_lane": EgoManeuver.CHANGE_LANE,
+            }[kind]
+            ego = (maneuver, words)
+        elif (
+            isinstance(subject, Mention)
+            and subject is reading.adversary
+            and adversary is None
+            and kind != "change_lane"
+        ):
+            adversary = (AdversaryManeuver(kind), words)
+    if ego is not None:
+        reading.facts["ego_maneuver"] = GroundedFact(
+            name="ego_maneuver", value=ego[0].value, source=FactSource.TEXT, quote=ego[1]
+        )
+    if adversary is not None:
+        reading.facts["adversary_maneuver"] = GroundedFact(
+            name="adversary_maneuver",
+            value=adversary[0].value,
+            source=FactSource.TEXT,
+            quote=adversary[1],
+        )
+
+
+_STATIONARY = re.compile(
+    r"\b(?:parked|double[- ]parked|stalled|broken[- ]down|stationary|abandoned|"
+    r"(?:is |was |sits |stands |standing )?stopped|sits|lies|lying|standing still|"
+    r"at a standstill|not moving)\b",
+    re.I,
+)
+_MOVING = re.compile(
+    r"\b(?:pulls?|pulled|start\w*|accelerat\w*|moves?|moving|drives?|driving|turns?|"
+    r"turning|cross\w*|runs?|running|rides?|riding|walks?|walking|steps?|swerv\w*|"
+    r"merg\w*|cuts?|reverses?|backs?|rolls?|speeds?|brakes?|braking|slows?|suddenly|"
+    r"abruptly|sharply|hard)\b",
+    re.I,
+)
+
+
+def read_stationary(cast: Cast, mention: Mention) -> GroundedFact | None:
+    """Whether the words about `mention` say it stays put for the whole scene ("a truck
+    parked in its lane", "a stalled car"), and move it nowhere ("a parked car pulls out")."""
+    for start, end in words_of(cast, mention):
+        words = cast.text[start:end]
+        still = _STATIONARY.search(words)
+        if still and not _MOVING.search(words):
+            return GroundedFact(
+                name="adversary_stationary",
+                value="true",
+                source=FactSource.TEXT,
+                quote=still.group(0),
+            )
+    return None
+
+
+# -- who is the adversary -------------------------------------------------------------------
+
+_CLASS_TYPE = {
+    "Car": AdversaryType.CAR,
+    "Van": AdversaryType.CAR,
+    "Truck": AdversaryType.TRUCK,
+    "Bus": AdversaryType.TRUCK,
+    "Motorcycle": AdversaryType.MOTORCYCLE,
+    "Bicycle": AdversaryType.BICYCLE,
+    "Pedestrian": AdversaryType.PEDESTRIAN,
+}
+_BACKGROUND = re.compile(
+    r"\b(?:parked|hides?|hidden|blocking the view|occlud\w*|standing at a bus stop)\b", re.I
+)
+
+
+def adversary_type_of(cls: str) -> AdversaryType | None:
+    return _CLASS_TYPE.get(cls)
+
+
+def choose_adversary(cast: Cast, quote: str | None) -> Mention | None:
+    """The named road user the model points at (by a quote that is in the text); else the
+    first road user not described as parked or hiding something; else the first one."""
+    if quote:
+        span = find_quote(cast.text, quote)
+        if span is not None:
+            mention = cast.mention_at(*span)
+            if mention is not None and mention.cls in _CLASS_TYPE:
+                return mention
+            mentions = [m for m in cast.others if m.cls in _CLASS_TYPE]
+            named = [m for m in mentions if re.search(rf"\b{re.escape(m.quote)}\b", quote, re.I)]
+            if named:
+                return named[0]
+    road_users = [m for m in cast.others if m.cls in _CLASS_TYPE]
+    for mention in road_users:
+        words = " ".join(cast.text[a:b] for a, b in words_of(cast, mention))
+        if not _BACKGROUND.search(words):
+            return mention
+    return road_users[0] if road_users else None
+
+
+def is_vehicle(cls: str) -> bool:
+    return cls in VEHICLE_CLASSES
+
+
+def read_description(description: str, adversary_quote: str | None = None) -> Reading:
+    """Everything the fixed rules read: the cast, the adversary, its side and turn, the
+    ego's maneuver and the weather, each with its words."""
+    cast = read_cast(description)
+    reading = Reading(cast=cast)
+    reading.adversary = choose_adversary(cast, adversary_quote)
+    reading.facts["weather"] = read_weather(description)
+    if reading.adversary is not None:
+        adversary = reading.adversary
+        reading.facts["adversary_class"] = GroundedFact(
+            name="adversary_class",
+            value=adversary.cls,
+            source=FactSource.TEXT,
+            quote=adversary.quote,
+        )
+        position = read_compass(cast, adversary) or read_position(cast, adversary)
+        if position is not None:
+            reading.facts["spawn_position"] = position
+        stationary = read_stationary(cast, adversary)
+        if stationary is not None:
+            reading.facts["adversary_stationary"] = stationary
+    read_maneuvers(reading)
+    return reading
