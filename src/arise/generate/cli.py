@@ -182,6 +182,10 @@ def _print_grounding(run: Generation) -> None:
         console.print(f"    {escape(fact.describe())}", highlight=False)
     for note in run.hint_notes:
         console.print(f"    [dim]{escape(note)}[/dim]", highlight=False)
+    if run.ignored_text:
+        console.print("  left out (not part of the scenario):")
+        for text in run.ignored_text:
+            console.print(f"    [dim]{escape(text)}[/dim]", highlight=False)
 
 
 def _print_gate(run: Generation) -> None:

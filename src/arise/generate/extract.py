@@ -6,6 +6,7 @@ import json
 import re
 from dataclasses import dataclass, field
 
+from arise.generate.condense import condense
 from arise.generate.grounding import ground
 from arise.generate.spec import ExtractionAnswer, ScenarioSpec
 from arise.llm.base import BaseProvider
@@ -31,6 +32,7 @@ class Extraction:
     error: str | None = None
     contradictions: list[str] = field(default_factory=list)
     notes: list[str] = field(default_factory=list)  # model answers overruled or dropped
+    ignored: list[str] = field(default_factory=list)  # input left out (dates, aftermath)
 
 
 def check_description(description: str) -> str | None:
@@ -86,8 +88,9 @@ def extract_spec(
     refusal = check_description(description)
     if refusal:
         return Extraction(error=refusal)
+    condensed = condense(description)  # a crash report without its date and aftermath
     completion = provider.complete(
-        extraction_messages(description),
+        extraction_messages(condensed.text),
         temperature=temperature,
         max_tokens=600,
         schema=ExtractionAnswer,
@@ -95,9 +98,10 @@ def extract_spec(
     )
     answer = completion.parsed
     assert isinstance(answer, ExtractionAnswer)
-    grounded = ground(description, answer)
+    grounded = ground(condensed.text, answer)
     return Extraction(
         spec=grounded.spec,
-        contradictions=find_contradictions(description, grounded.spec),
+        contradictions=find_contradictions(condensed.text, grounded.spec),
         notes=grounded.notes,
+        ignored=condensed.ignored,
     )

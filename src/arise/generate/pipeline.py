@@ -291,6 +291,7 @@ class Generator:
             return Outcome(RunStatus.REFUSED, extraction.error)
         run.spec = extraction.spec
         run.hint_notes = extraction.notes
+        run.ignored_text = extraction.ignored
         run.contradictions = extraction.contradictions
         spec = run.spec
         emit(StageStarted(RunStage.RETRIEVE))

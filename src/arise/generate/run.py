@@ -126,6 +126,7 @@ class Generation:
     message: str | None = None
     spec: ScenarioSpec | None = None
     hint_notes: list[str] = field(default_factory=list)
+    ignored_text: list[str] = field(default_factory=list)  # input that is not the scenario
     contradictions: list[str] = field(default_factory=list)
     retrieval: Retrieval | None = None
     draft: Draft | None = None
@@ -233,6 +234,7 @@ class Generation:
             "options": self.options.model_dump(mode="json"),
             "spec": self.spec.model_dump(mode="json") if self.spec else None,
             "spec_corrections": self.hint_notes,
+            "ignored_text": self.ignored_text,
             "contradictions": self.contradictions,
             "retrieved": retrieval.ids() if retrieval else {},
             "chosen": [e.id for e in self.draft.entries] if self.draft else [],
