@@ -27,6 +27,31 @@ DEFAULT_TIMESTEP = 0.1
 MIN_WHEELBASE = 4.0  # metres
 AUTOPILOT_LOOKAHEAD_MIN = 5.0  # metres
 AUTOPILOT_GAP = 8.0  # metres kept to whatever is ahead
+# Speed up to which the lateral gains apply as tuned; above it they shrink with 1/v^2.
+LATERAL_REFERENCE_SPEED = 10.0  # m/s
+
+
+class SpeedScheduledLateralController(PIDLateralController):
+    """Scenic's lateral PID with its output scaled by (v_ref / v)^2 above v_ref.
+
+    In this physics (as on a real car) the yaw rate a steering input gives grows with
+    speed, and the cross-track error the PID sees grows with speed again: the loop gain
+    grows with v^2. Gains that hold the lane at 10 m/s make the car weave from lane to
+    lane at 21 m/s and above (the derivative term overshoots within one 0.1 s step).
+    Scaling by (v_ref / v)^2 keeps the loop as it is at v_ref, so the car keeps its lane
+    at any speed up to the KB's 35 m/s; CARLA's own agents schedule their gains similarly.
+    """
+
+    def __init__(self, agent: Any, K_P: float, K_D: float, K_I: float, dt: float):
+        super().__init__(K_P=K_P, K_D=K_D, K_I=K_I, dt=dt)
+        self.agent = agent
+
+    def run_step(self, cte: float) -> float:
+        output = float(super().run_step(cte))
+        speed = float(getattr(self.agent, "speed", 0.0) or 0.0)
+        if speed > LATERAL_REFERENCE_SPEED:
+            output *= (LATERAL_REFERENCE_SPEED / speed) ** 2
+        return output
 
 
 class OfflineCarlaSimulator(DrivingSimulator):
@@ -256,7 +281,7 @@ class OfflineCarlaSimulation(DrivingSimulation):
         else:
             lon = PIDLongitudinalController(K_P=0.25, K_D=0.025, K_I=0.0, dt=dt)
         kp, kd, ki = lateral
-        return lon, PIDLateralController(K_P=kp, K_D=kd, K_I=ki, dt=dt)
+        return lon, SpeedScheduledLateralController(agent, K_P=kp, K_D=kd, K_I=ki, dt=dt)
 
     def getLaneFollowingControllers(self, agent: Any) -> tuple[Any, Any]:
         return self._pid_pair(agent, (0.1, 0.1, 0.02))
