@@ -21,7 +21,13 @@ from arise.generate.events import AttemptChecked, Progress, RunStage, StageStart
 from arise.generate.retrieve import Retrieval
 from arise.generate.rules import RuleContext, apply_rules
 from arise.generate.run import Attempt, AttemptKind, Generation, Outcome, RunStatus, unified_diff
-from arise.kb.compose import ComposeError, compose, composition_problems, pick_map
+from arise.kb.compose import (
+    ComposeError,
+    actor_at_line,
+    compose,
+    composition_problems,
+    pick_map,
+)
 from arise.kb.schema import Component, Entry
 from arise.llm.base import BaseProvider
 from arise.llm.types import Message, Usage
@@ -77,6 +83,14 @@ def extract_code(reply: str) -> str | None:
     code = match.group(1) if match else reply
     code = code.strip("\n")
     return code if code.strip() else None
+
+
+def guilty_actor(script: str, diagnostic: Diagnostic) -> str | None:
+    """The other actor ('actor2') whose snippet the diagnostic's line (or its first rejection
+    with a line) is in; None when it is about the adversary or the scene."""
+    lines = [diagnostic.line] + [r.line for r in diagnostic.rejections]
+    line = next((n for n in lines if n is not None), None)
+    return actor_at_line(script, line)
 
 
 def guilty_section(diagnostic: Diagnostic) -> str | None:
@@ -187,7 +201,8 @@ def swap_section(context: RepairContext, name: str) -> RepairStep | None:
     if component is None or component is Component.WEATHER:
         return None
     draft = context.draft
-    current = [e for e in draft.entries if e.component is component]
+    # The adversary's (or the scene's) entries: the other actors' copies are not swapped.
+    current = [e for e in draft.entries if e.component is component and e.actor is None]
     if component in (Component.MISC, Component.REQUIREMENTS):
         if not current:
             return None
@@ -195,7 +210,7 @@ def swap_section(context: RepairContext, name: str) -> RepairStep | None:
         note = f"dropped {current[-1].id}"
     else:
         tried = context.tried.setdefault(name, {e.id for e in current})
-        others = [e for e in draft.entries if e.component is not component]
+        others = [e for e in draft.entries if e not in current]
         replacement: Entry | None = next(
             (
                 c
@@ -208,8 +223,14 @@ def swap_section(context: RepairContext, name: str) -> RepairStep | None:
         if replacement is None:
             return None
         tried.add(replacement.id)
-        entries = [replacement if e.component is component else e for e in draft.entries]
+        entries = [replacement if e in current else e for e in draft.entries]
         note = f"{current[0].id if current else '-'} -> {replacement.id}"
+    return _recomposed(context, entries, note)
+
+
+def _recomposed(context: RepairContext, entries: list[Entry], note: str) -> RepairStep | None:
+    """The draft of these entries as one swap step; None when they do not compose."""
+    draft = context.draft
     map_name = pick_map(entries, context.maps) if context.maps else draft.map_name
     if map_name is None:
         return None
@@ -225,6 +246,16 @@ def swap_section(context: RepairContext, name: str) -> RepairStep | None:
         params=draft.params,
     )
     return RepairStep(new_draft.script, AttemptKind.SWAP, note, draft=new_draft)
+
+
+def drop_actor(context: RepairContext, actor: str) -> RepairStep | None:
+    """Leave out one other actor (its spawn and behavior copies): a diagnostic about it
+    should not cost the adversary's scene. None when it is not in the draft."""
+    mine = [e for e in context.draft.entries if e.actor == actor]
+    if not mine:
+        return None
+    entries = [e for e in context.draft.entries if e.actor != actor]
+    return _recomposed(context, entries, f"dropped {actor} ({', '.join(e.id for e in mine)})")
 
 
 def semantic_repair(
@@ -273,6 +304,11 @@ def repair_once(
     fix = apply_rules(diagnostic, script, context.rules)
     if fix is not None:
         return RepairStep(fix.text, AttemptKind.RULE, f"{fix.rule}: {fix.note}")
+    actor = guilty_actor(script, diagnostic)
+    if actor is not None:
+        dropped = drop_actor(context, actor)
+        if dropped is not None:
+            return dropped
     section = guilty_section(diagnostic)
     if context.model_may_repair(section, diagnostic):
         assert section is not None

@@ -235,7 +235,7 @@ class Generation:
             "spec_corrections": self.hint_notes,
             "contradictions": self.contradictions,
             "retrieved": retrieval.ids() if retrieval else {},
-            "chosen": [e.id for e in self.draft.entries] if self.draft else [],
+            "chosen": [e.label for e in self.draft.entries] if self.draft else [],
             "retrieval_notes": retrieval.notes if retrieval else [],
             "map": self.draft.map_name if self.draft else None,
             "params": self.draft.params if self.draft else {},
