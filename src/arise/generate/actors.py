@@ -29,6 +29,10 @@ _HIDES = re.compile(
 # "steps out from behind a parked van": the van is in front of the adversary.
 _BEHIND_IT = re.compile(r"\b(?:from )?behind\s*$", re.I)
 _PARKED = re.compile(r"\b(?:double[- ])?parked\b", re.I)
+_FOLLOWS = re.compile(
+    r"\bfollow(?:s|ing)? (?:the |our )?(?:ego|av)\b|\btailgat\w*|\bbehind (?:the )?(?:ego|av)\b",
+    re.I,
+)
 _SLOW = re.compile(r"\bslow(?:er|ly|[- ]moving)?\b|\bcrawl\w*|\bcreep\w*", re.I)
 _ROLE_OF_START: dict[RelativePosition, ActorRole] = {
     RelativePosition.ONCOMING: ActorRole.ONCOMING,
@@ -56,6 +60,8 @@ def _role(
         return ActorRole.PARKED if _PARKED.search(words) else ActorRole.STOPPED
     if start in _ROLE_OF_START:
         return _ROLE_OF_START[start]
+    if start is None and _FOLLOWS.search(words):
+        return ActorRole.FOLLOWING
     if _SLOW.search(words):
         return ActorRole.SLOW
     if start is RelativePosition.AHEAD_SAME_LANE:

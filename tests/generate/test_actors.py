@@ -1,0 +1,229 @@
+"""The other actors of a description: read into the spec, placed by spawns of their own, and
+known to the repair loop. Fast: the real knowledge base, no simulator, no model."""
+
+from __future__ import annotations
+
+import pytest
+
+from arise.generate.assemble import assemble
+from arise.generate.grounding import ground
+from arise.generate.repair import RepairContext, guilty_actor, repair_once
+from arise.generate.retrieve import Retrieval, retrieve
+from arise.generate.rules import RuleContext
+from arise.generate.run import AttemptKind
+from arise.generate.spec import Actor, ExtractionAnswer, ScenarioSpec
+from arise.kb.compose import composition_problems
+from arise.kb.loader import KnowledgeBase, load_kb
+from arise.kb.retrieval import BM25Retriever
+from arise.kb.schema import Component
+from arise.maps.registry import MapRegistry
+from arise.validate.types import Diagnostic, Rejection, Stage
+from arise.vocabulary import ActorRole, RelativePosition
+
+TRUCKS = (
+    "Two slow trucks drive ahead in the ego's lane and a car overtakes the ego from behind "
+    "on the left."
+)
+BUS = "A stalled car blocks the ego's lane ahead while an oncoming bus approaches."
+VAN = "A pedestrian steps out from behind a parked van on the right."
+CONES = "The ego passes three cones and a parked car on the right when a cyclist swerves."
+
+
+def answer(adversary: str, position: str = "ahead_same_lane") -> ExtractionAnswer:
+    return ExtractionAnswer.model_validate(
+        {
+            "adversary": adversary,
+            "adversary_type": "car",
+            "behavior": "",
+            "road_type": "straight_road",
+            "ego_maneuver": "go_straight",
+            "geometry": "",
+            "spawn_position": position,
+            "spawn": "",
+        }
+    )
+
+
+@pytest.fixture(scope="module")
+def kb() -> KnowledgeBase:
+    return load_kb()
+
+
+@pytest.fixture(scope="module")
+def maps() -> dict[str, frozenset[str]]:
+    return {name: entry.features for name, entry in MapRegistry().entries.items()}
+
+
+def spec_of(text: str, adversary: str) -> ScenarioSpec:
+    return ground(text, answer(adversary)).spec
+
+
+def retrieved(kb: KnowledgeBase, maps: dict[str, frozenset[str]], text: str, adversary: str):
+    spec = spec_of(text, adversary)
+    return spec, retrieve(spec, kb, BM25Retriever(kb), maps, text)
+
+
+# -- the spec -------------------------------------------------------------------------------
+
+
+def test_each_other_road_user_is_an_actor_with_its_count_and_side() -> None:
+    spec = spec_of(TRUCKS, "a car")
+    assert spec.scenic_class == "Car"
+    assert spec.actors == [
+        Actor(
+            role=ActorRole.SLOW,
+            scenic_class="Truck",
+            count=2,
+            start=RelativePosition.AHEAD_SAME_LANE,
+            quote="Two slow trucks",
+        )
+    ]
+    assert len(spec.participants) == len(spec.actors)  # the words are still there
+
+
+def test_roles_come_from_each_actors_own_words() -> None:
+    [bus] = spec_of(BUS, "A stalled car").actors
+    assert (bus.role, bus.scenic_class, bus.start) == (
+        ActorRole.ONCOMING,
+        "Bus",
+        RelativePosition.ONCOMING,
+    )
+    [van] = spec_of(VAN, "A pedestrian").actors
+    assert (van.role, van.scenic_class, van.stationary) == (ActorRole.OCCLUDER, "Van", True)
+    cones, car = spec_of(CONES, "a cyclist").actors
+    assert (cones.role, cones.count, cones.road_user) == (ActorRole.OBSTACLE, 3, False)
+    assert (car.role, car.start, car.stationary) == (
+        ActorRole.PARKED,
+        RelativePosition.ROADSIDE_RIGHT,
+        True,
+    )
+
+
+def test_a_stalled_vehicle_is_stopped_and_a_follower_follows() -> None:
+    [stalled] = spec_of("A cyclist swerves around a stalled truck ahead.", "A cyclist").actors
+    assert (stalled.role, stalled.stationary) == (ActorRole.STOPPED, True)
+    [follower] = spec_of(
+        "A car brakes hard ahead of the ego while a van follows the ego closely.", "A car"
+    ).actors
+    assert follower.scenic_class == "Van" and follower.role is ActorRole.FOLLOWING
+
+
+# -- retrieval and composition --------------------------------------------------------------
+
+
+def test_two_slow_trucks_get_two_spawns_of_their_own_and_no_misc_entry(
+    kb: KnowledgeBase, maps: dict[str, frozenset[str]]
+) -> None:
+    spec, found = retrieved(kb, maps, TRUCKS, "a car")
+    assert [placed.name for placed in found.actors] == ["actor2", "actor3"]
+    assert {placed.spawn.id for placed in found.actors} == {"spawn.lead_same_lane"}
+    assert {placed.behavior.id for placed in found.actors} == {"behavior.slow_to_block"}
+    assert {placed.spawn.actor_class for placed in found.actors} == {"Truck"}
+    assert found.chosen[Component.MISC] == []  # no double placement
+    [adversary_spawn] = found.chosen[Component.SPAWN]
+    assert adversary_spawn.actor is None
+    entries = found.chosen_entries()
+    assert composition_problems(entries, spec.scenic_class) == []
+    draft = assemble(found, spec.scenic_class, TRUCKS, params={})
+    assert draft.script.count("= new Truck at actor") == 2
+    assert "# kb: behavior.slow_to_block as actor3" in draft.script
+    assert "param OPT_ACTOR3_SPAWN_GAP = Range(37, 47)" in draft.script  # behind actor2
+
+
+def test_an_oncoming_bus_gets_a_geometry_with_an_oncoming_lane(
+    kb: KnowledgeBase, maps: dict[str, frozenset[str]]
+) -> None:
+    spec, found = retrieved(kb, maps, BUS, "A stalled car")
+    [geometry] = found.chosen[Component.GEOMETRY]
+    assert "oncomingSection" in geometry.defines
+    [bus] = found.actors
+    assert bus.spawn.id == "spawn.oncoming_lane_ahead"
+    assert bus.behavior.id == "behavior.cruise_constant"
+    assert [e.id for e in found.chosen[Component.BEHAVIOR]] == ["behavior.stalled"]
+    assert found.chosen[Component.MISC] == []
+
+
+def test_a_parked_actor_stays_put(kb: KnowledgeBase, maps: dict[str, frozenset[str]]) -> None:
+    text = "A car pulls out in front of the ego while a truck is parked on the right."
+    spec, found = retrieved(kb, maps, text, "A car")
+    [truck] = found.actors
+    assert truck.actor.role is ActorRole.PARKED
+    assert truck.spawn.approach is not None and truck.spawn.approach.value == "roadside_right"
+    assert set(truck.behavior.tags) & {"static", "stalled"}
+
+
+def test_occluders_and_props_are_still_misc_entries(
+    kb: KnowledgeBase, maps: dict[str, frozenset[str]]
+) -> None:
+    _, found = retrieved(kb, maps, VAN, "A pedestrian")
+    assert found.actors == []
+    assert [e.id for e in found.chosen[Component.MISC]] == ["misc.occluder_parked_van"]
+
+
+def test_a_spec_without_actors_retrieves_as_before(
+    kb: KnowledgeBase, maps: dict[str, frozenset[str]]
+) -> None:
+    spec = spec_of(TRUCKS, "a car").model_copy(update={"actors": []})
+    found = retrieve(spec, kb, BM25Retriever(kb), maps, TRUCKS)
+    assert found.actors == []
+    assert all(e.actor is None for e in found.chosen_entries())
+
+
+# -- repair ---------------------------------------------------------------------------------
+
+
+def context_for(found: Retrieval, spec: ScenarioSpec, maps: dict[str, frozenset[str]]):
+    draft = assemble(found, spec.scenic_class, TRUCKS, params={})
+    return RepairContext(
+        description=TRUCKS,
+        retrieval=found,
+        draft=draft,
+        provider=None,
+        rules=RuleContext(adversary_class=spec.scenic_class),
+        maps=maps,
+    )
+
+
+def test_a_diagnostic_about_an_actor_drops_that_actor(
+    kb: KnowledgeBase, maps: dict[str, frozenset[str]]
+) -> None:
+    spec, found = retrieved(kb, maps, TRUCKS, "a car")
+    context = context_for(found, spec, maps)
+    script = context.draft.script
+    line = next(
+        n for n, text in enumerate(script.splitlines(), 1) if text.startswith("actor3 = new")
+    )
+    diagnostic = Diagnostic(
+        stage=Stage.SAMPLE,
+        error_type="RejectionException",
+        message="failed to generate a scenario",
+        rejections=[Rejection(reason="object intersects", count=200, line=line)],
+    )
+    assert guilty_actor(script, diagnostic) == "actor3"
+    step = repair_once(context, script, diagnostic)
+    assert step.kind is AttemptKind.SWAP and step.draft is not None
+    assert step.detail == "dropped actor3 (behavior.slow_to_block, spawn.lead_same_lane)"
+    assert step.script is not None and "actor3" not in step.script
+    assert "actor2 = new Truck" in step.script
+    adversary = next(
+        n for n, text in enumerate(script.splitlines(), 1) if text.startswith("adversary = ")
+    )
+    assert (
+        guilty_actor(script, diagnostic.model_copy(update={"rejections": [], "line": adversary}))
+        is None
+    )
+
+
+def test_a_swap_replaces_the_adversarys_spawn_and_keeps_the_actors(
+    kb: KnowledgeBase, maps: dict[str, frozenset[str]]
+) -> None:
+    from arise.generate.repair import swap_section
+
+    spec, found = retrieved(kb, maps, TRUCKS, "a car")
+    context = context_for(found, spec, maps)
+    step = swap_section(context, "SPAWN")
+    assert step is not None and step.draft is not None
+    spawns = [e for e in step.draft.entries if e.component is Component.SPAWN]
+    assert [e.actor for e in spawns].count(None) == 1
+    assert sorted(e.actor for e in spawns if e.actor) == ["actor2", "actor3"]
+    assert spawns[0].id != found.chosen[Component.SPAWN][0].id
