@@ -227,3 +227,14 @@ def test_a_swap_replaces_the_adversarys_spawn_and_keeps_the_actors(
     assert [e.actor for e in spawns].count(None) == 1
     assert sorted(e.actor for e in spawns if e.actor) == ["actor2", "actor3"]
     assert spawns[0].id != found.chosen[Component.SPAWN][0].id
+
+
+def test_a_truck_the_adversary_walks_out_from_in_front_of_hides_it() -> None:
+    text = "The ego passes a truck double-parked on the right; a man walks out from in front of the truck."
+    [truck] = spec_of(text, "a man").actors
+    assert truck.role is ActorRole.OCCLUDER
+
+
+def test_an_actor_says_what_it_rests_on() -> None:
+    [trucks] = spec_of(TRUCKS, "a car").actors
+    assert trucks.describe() == "actor: 2 Truck, slow, ahead same lane ('Two slow trucks')"

@@ -26,8 +26,9 @@ _HIDES = re.compile(
     r"blocking the (?:view|line of sight)|obscur\w*|occlud\w*)\b",
     re.I,
 )
-# "steps out from behind a parked van": the van is in front of the adversary.
-_BEHIND_IT = re.compile(r"\b(?:from )?behind\s*$", re.I)
+# "steps out from behind a parked van", "walked out from in front of the truck": the van
+# or the truck hides the adversary.
+_BEHIND_IT = re.compile(r"\b(?:from )?behind\s*$|\bfrom in front of\s*$", re.I)
 _PARKED = re.compile(r"\b(?:double[- ])?parked\b", re.I)
 _FOLLOWS = re.compile(
     r"\bfollow(?:s|ing)? (?:the |our )?(?:ego|av)\b|\btailgat\w*|\bbehind (?:the )?(?:ego|av)\b",
@@ -47,14 +48,14 @@ def _role(
     cls: str,
     prop: bool,
     words: str,
-    before: str,
+    before: list[str],
     start: RelativePosition | None,
     stationary: bool,
 ) -> ActorRole:
     """The role the words give an actor; the strongest cue first."""
     if prop:
         return ActorRole.OBSTACLE
-    if _HIDES.search(words) or _BEHIND_IT.search(before):
+    if _HIDES.search(words) or any(_BEHIND_IT.search(b) for b in before):
         return ActorRole.OCCLUDER
     if stationary:
         return ActorRole.PARKED if _PARKED.search(words) else ActorRole.STOPPED
@@ -82,7 +83,7 @@ def read_actors(reading: Reading) -> list[Actor]:
             continue
         stretches = words_of(cast, mention)
         words = " ".join(cast.text[a:b] for a, b in stretches)
-        before = cast.text[max(0, stretches[0][0] - 20) : stretches[0][0]]
+        before = [cast.text[max(0, a - 20) : a] for a, _ in stretches]
         position = read_compass(cast, mention) or read_position(cast, mention)
         start = RelativePosition(position.value) if position is not None else None
         stationary = read_stationary(cast, mention) is not None

@@ -569,6 +569,10 @@ COPY_MARGIN = 3.0
 
 
 def _actor_start(actor: Actor) -> RelativePosition | None:
+    """Where to place the actor: its start, else its role's; a parked vehicle "ahead" is
+    at the kerb ahead."""
+    if actor.role is ActorRole.PARKED and actor.start is RelativePosition.AHEAD_SAME_LANE:
+        return RelativePosition.ROADSIDE_RIGHT
     return actor.start or ROLE_STARTS.get(actor.role)
 
 

@@ -67,6 +67,15 @@ class Actor(BaseModel):
     stationary: bool = Field(default=False, description="the text says it stays put")
     quote: str = Field(description="the words of the description that name it")
 
+    def describe(self) -> str:
+        """One line for the CLI: 'actor: 2 Truck, slow, ahead same lane ("Two slow trucks")'."""
+        where = self.start.value.replace("_", " ") if self.start else "start not stated"
+        still = ", stays put" if self.stationary and self.road_user else ""
+        return (
+            f"actor: {self.count} {self.scenic_class}, {self.role.value}, {where}{still} "
+            f"({self.quote!r})"
+        )
+
     @property
     def road_user(self) -> bool:
         """A vehicle or a pedestrian (which gets its own spawn), not a prop."""
