@@ -3,22 +3,29 @@ known to the repair loop. Fast: the real knowledge base, no simulator, no model.
 
 from __future__ import annotations
 
+import json
+from pathlib import Path
+
 import pytest
 
-from arise.generate.assemble import assemble
+from arise.generate.assemble import assemble, declared_params
 from arise.generate.grounding import ground
+from arise.generate.options import GenerateOptions
+from arise.generate.pipeline import Generator
 from arise.generate.repair import RepairContext, guilty_actor, repair_once
 from arise.generate.retrieve import Retrieval, retrieve
 from arise.generate.rules import RuleContext
-from arise.generate.run import AttemptKind
+from arise.generate.run import AttemptKind, RunStatus
 from arise.generate.spec import Actor, ExtractionAnswer, ScenarioSpec
 from arise.kb.compose import composition_problems
 from arise.kb.loader import KnowledgeBase, load_kb
 from arise.kb.retrieval import BM25Retriever
 from arise.kb.schema import Component
+from arise.llm.accounting import UsageLedger
 from arise.maps.registry import MapRegistry
 from arise.validate.types import Diagnostic, Rejection, Stage
 from arise.vocabulary import ActorRole, RelativePosition
+from tests.fakes import FakeValidator, ScriptedProvider, failed, passed
 
 TRUCKS = (
     "Two slow trucks drive ahead in the ego's lane and a car overtakes the ego from behind "
@@ -238,3 +245,41 @@ def test_a_truck_the_adversary_walks_out_from_in_front_of_hides_it() -> None:
 def test_an_actor_says_what_it_rests_on() -> None:
     [trucks] = spec_of(TRUCKS, "a car").actors
     assert trucks.describe() == "actor: 2 Truck, slow, ahead same lane ('Two slow trucks')"
+
+
+# -- the generator ----------------------------------------------------------------------------
+
+
+def test_a_run_places_the_actors_tunes_only_the_adversary_and_drops_a_failing_actor(
+    kb: KnowledgeBase, maps: dict[str, frozenset[str]], tmp_path: Path
+) -> None:
+    extraction = answer("a car", "adjacent_lane_left")
+    spec = ground(TRUCKS, extraction).spec
+    found = retrieve(spec, kb, BM25Retriever(kb), maps, TRUCKS, topk=10)
+    own = [e for e in found.chosen_entries() if e.actor is None]
+    defaults = {name: value for name, (value, _) in declared_params(own).items()}
+    script = assemble(found, spec.scenic_class, TRUCKS, params={}).script
+    line = next(
+        n for n, text in enumerate(script.splitlines(), 1) if text.startswith("actor3 = new")
+    )
+    overlap = failed(
+        Stage.SAMPLE,
+        "RejectionException",
+        "failed to generate a scenario",
+        rejections=[Rejection(reason="object intersects", count=250, line=line)],
+    )
+    model = ScriptedProvider([extraction.model_dump_json(), json.dumps(defaults)])
+    checker = FakeValidator([overlap, passed()])
+    options = GenerateOptions(retrieval="bm25", semantic_gate=False)
+    with Generator(options, provider=UsageLedger(model), checker=checker) as generator:
+        run = generator.generate(TRUCKS, tmp_path)
+    assert run.status is RunStatus.EXECUTED, run.message
+    tune = model.requests[1].messages[-1].content
+    assert "OPT_SPAWN_BEHIND" in tune and "OPT_ACTOR" not in tune
+    assert checker.scripts[0] == script
+    assert "actor3" not in checker.scripts[1] and "actor2 = new Truck" in checker.scripts[1]
+    assert run.attempts[1].detail == "dropped actor3 (behavior.slow_to_block, spawn.lead_same_lane)"
+    report = json.loads((tmp_path / "report.json").read_text())
+    assert [a["name"] for a in report["placed_actors"]] == ["actor2", "actor3"]
+    assert "spawn.lead_same_lane as actor2" in report["chosen"]
+    assert "spawn.lead_same_lane as actor3" not in report["chosen"]
