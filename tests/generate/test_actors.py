@@ -283,3 +283,35 @@ def test_a_run_places_the_actors_tunes_only_the_adversary_and_drops_a_failing_ac
     assert [a["name"] for a in report["placed_actors"]] == ["actor2", "actor3"]
     assert "spawn.lead_same_lane as actor2" in report["chosen"]
     assert "spawn.lead_same_lane as actor3" not in report["chosen"]
+
+
+def test_a_rejection_without_a_line_that_names_an_actors_class_is_about_that_actor(
+    kb: KnowledgeBase, maps: dict[str, frozenset[str]]
+) -> None:
+    spec, found = retrieved(kb, maps, TRUCKS, "a car")
+    context = context_for(found, spec, maps)
+    reason = "Containment violation: unnamed Truck is not contained in its container"
+    diagnostic = Diagnostic(
+        stage=Stage.SAMPLE,
+        error_type="RejectionException",
+        message="no scene satisfied the requirements",
+        rejections=[Rejection(reason=reason, count=500)],
+    )
+    script, entries = context.draft.script, context.draft.entries
+    assert guilty_actor(script, diagnostic, entries) == "actor3"
+    assert guilty_actor(script, diagnostic) is None  # no entries: no actor to blame
+    car = diagnostic.model_copy(
+        update={"rejections": [Rejection(reason=reason.replace("Truck", "Car"), count=500)]}
+    )
+    assert guilty_actor(script, car, entries) is None  # the adversary's class
+
+
+def test_waiting_behind_a_vehicle_does_not_make_it_an_occluder() -> None:
+    text = (
+        "The ego waits behind a stopped bus at a T-junction when a motorcycle comes from the right."
+    )
+    [bus] = spec_of(text, "a motorcycle").actors
+    assert (bus.role, bus.stationary) == (ActorRole.STOPPED, True)
+    text = "The ego turns left while an oncoming car goes straight and a pedestrian waits on the right sidewalk."
+    [walker] = spec_of(text, "an oncoming car").actors
+    assert walker.stationary and walker.start is RelativePosition.ROADSIDE_RIGHT

@@ -20,12 +20,16 @@ from arise.evaluate.fidelity import (
 )
 from arise.generate.assemble import assemble
 from arise.generate.grounding import ground
+from arise.generate.options import GenerateOptions
+from arise.generate.repair import RepairContext, repair_loop
 from arise.generate.retrieve import retrieve
+from arise.generate.rules import RuleContext
+from arise.generate.run import Generation, RunStatus
 from arise.generate.spec import ExtractionAnswer
 from arise.kb.loader import KnowledgeBase, load_kb
 from arise.kb.retrieval import BM25Retriever
 from arise.maps.registry import MapRegistry
-from arise.validate import CheckOptions, WorkerPool, check_text
+from arise.validate import CheckOptions, CheckResult, WorkerPool, check_text
 
 SEEDS = (0, 1)
 ACTOR_FACTS = {FactKind.ACTOR, FactKind.NO_EXTRA_ACTORS, FactKind.START, FactKind.DIRECTION}
@@ -118,3 +122,53 @@ def test_every_named_actor_runs_on_its_side(
         assert not wrong, (chosen, seed, wrong)
         behaviors = sorted(a.behavior or "" for a in result.simulation.agents if not a.is_ego)
         assert behaviors.count("AdversaryBehavior") == 1, behaviors
+
+
+@pytest.mark.slow
+def test_an_actor_that_cannot_be_placed_is_left_out_by_the_repair_loop(
+    kb: KnowledgeBase, maps: dict[str, frozenset[str]], validator_pool: WorkerPool
+) -> None:
+    """A long bus 'ahead' of an ego that starts close to a T-junction does not fit on the
+    road (every sample is rejected, and the rejection names no line, only the class): the
+    loop leaves the bus out and the scene with the adversary runs."""
+    text = (
+        "The ego waits behind a stopped bus at a T-junction when a motorcycle comes from the right."
+    )
+    answer = ExtractionAnswer.model_validate(
+        {
+            "adversary": "a motorcycle",
+            "adversary_type": "motorcycle",
+            "behavior": "",
+            "road_type": "t_junction",
+            "ego_maneuver": "go_straight",
+            "geometry": "",
+            "spawn_position": "crossing_road_from_right",
+            "spawn": "",
+        }
+    )
+    spec = ground(text, answer).spec
+    found = retrieve(spec, kb, BM25Retriever(kb), maps, text)
+    [bus] = found.actors
+    assert bus.actor.scenic_class == "Bus"
+    draft = assemble(found, spec.scenic_class, text, params={})
+    context = RepairContext(
+        description=text,
+        retrieval=found,
+        draft=draft,
+        provider=None,
+        rules=RuleContext(adversary_class=spec.scenic_class),
+        maps=maps,
+    )
+    run = Generation(description=text, options=GenerateOptions(), spec=spec, retrieval=found)
+    run.use_draft(draft)
+
+    def validate(script: str) -> CheckResult:
+        return check_text(script, CheckOptions(seed=0, timeout=60), pool=validator_pool)
+
+    outcome = repair_loop(run, draft.script, validate, context, max_repairs=2)
+    assert outcome.status is RunStatus.EXECUTED, [a.detail for a in run.attempts]
+    first, *_, last = run.attempts
+    assert not first.ok and first.diagnostic is not None
+    assert "unnamed Bus" in first.diagnostic.rejections[0].reason
+    assert last.ok and last.detail.startswith("dropped actor2 (")
+    assert "actor2" not in last.script

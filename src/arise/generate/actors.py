@@ -11,6 +11,7 @@ from __future__ import annotations
 import re
 
 from arise.generate.readers import (
+    MOVING,
     Reading,
     read_compass,
     read_position,
@@ -28,7 +29,11 @@ _HIDES = re.compile(
 )
 # "steps out from behind a parked van", "walked out from in front of the truck": the van
 # or the truck hides the adversary.
-_BEHIND_IT = re.compile(r"\b(?:from )?behind\s*$|\bfrom in front of\s*$", re.I)
+# ("the ego waits behind a stopped bus" is not one.)
+_BEHIND_IT = re.compile(r"\b(?:from|out) (?:behind|in front of)\s*$", re.I)
+# Waiting or standing still, for an actor that is not the adversary (whose waiting is the
+# calm before its move): it stays put.
+_WAITS = re.compile(r"\b(?:waits?|waiting|stands?|standing|queu\w*)\b", re.I)
 _PARKED = re.compile(r"\b(?:double[- ])?parked\b", re.I)
 _FOLLOWS = re.compile(
     r"\bfollow(?:s|ing)? (?:the |our )?(?:ego|av)\b|\btailgat\w*|\bbehind (?:the )?(?:ego|av)\b",
@@ -86,7 +91,9 @@ def read_actors(reading: Reading) -> list[Actor]:
         before = [cast.text[max(0, a - 20) : a] for a, _ in stretches]
         position = read_compass(cast, mention) or read_position(cast, mention)
         start = RelativePosition(position.value) if position is not None else None
-        stationary = read_stationary(cast, mention) is not None
+        stationary = read_stationary(cast, mention) is not None or bool(
+            _WAITS.search(words) and not MOVING.search(words)
+        )
         role = _role(
             cls=mention.cls,
             prop=mention.is_prop,

@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import re
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 
 from arise.generate.assemble import Draft, apply_params
@@ -36,6 +36,7 @@ from arise.sections import replace_section, section_body
 from arise.validate.types import CheckResult, Diagnostic, Stage
 
 SECTION_COMPONENT = {c.section: c for c in Component}
+_UNNAMED = re.compile(r"\bunnamed (\w+)")
 _CODE_BLOCK = re.compile(r"```(?:scenic|python)?\s*\n(.*?)```", re.S)
 #: A section's model repairs that may fail before only swaps are tried for it.
 MODEL_TRIES_PER_SECTION = 2
@@ -85,12 +86,22 @@ def extract_code(reply: str) -> str | None:
     return code if code.strip() else None
 
 
-def guilty_actor(script: str, diagnostic: Diagnostic) -> str | None:
+def guilty_actor(script: str, diagnostic: Diagnostic, entries: Sequence[Entry] = ()) -> str | None:
     """The other actor ('actor2') whose snippet the diagnostic's line (or its first rejection
-    with a line) is in; None when it is about the adversary or the scene."""
+    with a line) is in; None when it is about the adversary or the scene. A rejection
+    without a line that names an object's class ("unnamed Bus is not contained") is about
+    the last of the other actors of that class in `entries`, if there is one."""
     lines = [diagnostic.line] + [r.line for r in diagnostic.rejections]
     line = next((n for n in lines if n is not None), None)
-    return actor_at_line(script, line)
+    if line is not None:
+        return actor_at_line(script, line)
+    for rejection in diagnostic.rejections:
+        named = _UNNAMED.search(rejection.reason)
+        if named is not None:
+            mine = [e.actor for e in entries if e.actor and e.actor_class == named.group(1)]
+            if mine:
+                return mine[-1]
+    return None
 
 
 def guilty_section(diagnostic: Diagnostic) -> str | None:
@@ -304,7 +315,7 @@ def repair_once(
     fix = apply_rules(diagnostic, script, context.rules)
     if fix is not None:
         return RepairStep(fix.text, AttemptKind.RULE, f"{fix.rule}: {fix.note}")
-    actor = guilty_actor(script, diagnostic)
+    actor = guilty_actor(script, diagnostic, context.draft.entries)
     if actor is not None:
         dropped = drop_actor(context, actor)
         if dropped is not None:

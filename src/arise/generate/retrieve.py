@@ -652,8 +652,8 @@ def place_actors(
         )
         if pair is None:
             result.notes.append(
-                f"actors: no spawn places {actor.quote!r} {start.value.replace('_', ' ')}; "
-                "left to the misc entries"
+                f"actors: no spawn and behavior place {actor.quote!r} "
+                f"{start.value.replace('_', ' ')}; left to the misc entries"
             )
             continue
         spawn, behavior = pair
