@@ -9,6 +9,7 @@ from pathlib import Path
 import pytest
 
 from arise.generate.assemble import assemble, declared_params
+from arise.generate.conformity import check_conformity, contradictions
 from arise.generate.grounding import ground
 from arise.generate.options import GenerateOptions
 from arise.generate.pipeline import Generator
@@ -23,7 +24,14 @@ from arise.kb.retrieval import BM25Retriever
 from arise.kb.schema import Component
 from arise.llm.accounting import UsageLedger
 from arise.maps.registry import MapRegistry
-from arise.validate.types import Diagnostic, Rejection, Stage
+from arise.validate.types import (
+    AgentTrace,
+    Diagnostic,
+    Rejection,
+    SimulationFacts,
+    Stage,
+    TracePoint,
+)
 from arise.vocabulary import ActorRole, RelativePosition
 from tests.fakes import FakeValidator, ScriptedProvider, failed, passed
 
@@ -315,3 +323,39 @@ def test_waiting_behind_a_vehicle_does_not_make_it_an_occluder() -> None:
     text = "The ego turns left while an oncoming car goes straight and a pedestrian waits on the right sidewalk."
     [walker] = spec_of(text, "an oncoming car").actors
     assert walker.stationary and walker.start is RelativePosition.ROADSIDE_RIGHT
+
+
+# -- conformity -----------------------------------------------------------------------------
+
+
+def _trace(name: str, kind: str, x: float, y: float, **fields: object) -> AgentTrace:
+    """An agent standing at (x, y) facing +y (the ego's heading at the origin)."""
+    point = TracePoint(step=0, x=x, y=y, heading=0.0, speed=0.0)
+    return AgentTrace(name=name, kind=kind, width=2.0, length=5.0, trajectory=[point], **fields)
+
+
+def _facts(agents: list[AgentTrace]) -> SimulationFacts:
+    return SimulationFacts(
+        agents=agents, steps=1, timestep=0.1, termination_type="steps", termination_reason=""
+    )
+
+
+def test_conformity_sees_each_actor_on_its_side_without_gating_it() -> None:
+    spec = spec_of(TRUCKS, "a car")
+    agents = [
+        _trace("ego", "Car", 0, 0, is_ego=True),
+        _trace("Car2", "Car", -3.5, -12, behavior="AdversaryBehavior"),
+        _trace("Truck1", "Truck", 0, 20, behavior="Actor2Behavior"),
+        _trace("Truck2", "Truck", -3.5, 40, behavior="Actor3Behavior"),  # in the left lane
+    ]
+    conformity = check_conformity(spec, _facts(agents))
+    [check] = [c for c in conformity.checks if c.name == "actor 1"]
+    assert (check.expected, check.observed, check.ok) == (
+        "2 Truck ahead_same_lane",
+        "2 Truck, 1 there",
+        False,
+    )
+    assert all(not c.check.startswith("actor") for c in contradictions(conformity))
+    agents[-1] = _trace("Truck2", "Truck", 0, 40, behavior="Actor3Behavior")
+    [check] = [c for c in check_conformity(spec, _facts(agents)).checks if c.name == "actor 1"]
+    assert check.ok

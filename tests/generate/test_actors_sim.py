@@ -19,6 +19,7 @@ from arise.evaluate.fidelity import (
     score_fidelity,
 )
 from arise.generate.assemble import assemble
+from arise.generate.conformity import check_conformity, contradictions
 from arise.generate.grounding import ground
 from arise.generate.options import GenerateOptions
 from arise.generate.repair import RepairContext, repair_loop
@@ -122,6 +123,11 @@ def test_every_named_actor_runs_on_its_side(
         assert not wrong, (chosen, seed, wrong)
         behaviors = sorted(a.behavior or "" for a in result.simulation.agents if not a.is_ego)
         assert behaviors.count("AdversaryBehavior") == 1, behaviors
+        # The conformity check against the spec sees each actor too (not gated).
+        conformity = check_conformity(spec, result.simulation)
+        checks = [c for c in conformity.checks if c.name.startswith("actor ")]
+        assert len(checks) == len(spec.actors) and all(c.ok for c in checks), checks
+        assert not [c for c in contradictions(conformity) if c.check.startswith("actor")]
 
 
 @pytest.mark.slow
