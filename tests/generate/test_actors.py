@@ -359,3 +359,40 @@ def test_conformity_sees_each_actor_on_its_side_without_gating_it() -> None:
     agents[-1] = _trace("Truck2", "Truck", 0, 40, behavior="Actor3Behavior")
     [check] = [c for c in check_conformity(spec, _facts(agents)).checks if c.name == "actor 1"]
     assert check.ok
+
+
+def test_the_others_of_a_counted_adversary_are_copies_of_its_entries(
+    kb: KnowledgeBase, maps: dict[str, frozenset[str]]
+) -> None:
+    text = "Three cyclists ride ahead of the ego in its lane."
+    spec, found = retrieved(kb, maps, text, "Three cyclists")
+    assert spec.scenic_class == "Bicycle" and spec.participants == []
+    assert spec.actors == [
+        Actor(role=ActorRole.ADVERSARY, scenic_class="Bicycle", count=2, quote="Three cyclists")
+    ]
+    [spawn] = found.chosen[Component.SPAWN]
+    [behavior] = found.chosen[Component.BEHAVIOR]
+    assert [p.name for p in found.actors] == ["actor2", "actor3"]
+    assert {p.spawn.id for p in found.actors} == {spawn.id}
+    assert {p.behavior.id for p in found.actors} == {behavior.id}
+    draft = assemble(found, spec.scenic_class, text, params={})
+    gaps = [
+        line
+        for line in draft.script.splitlines()
+        if line.startswith("param OPT_") and "GAP" in line
+    ]
+    assert len(gaps) == 3 and len(set(gaps)) == 3  # each further out than the one before
+    # Neither missing nor extra for the conformity check: the text names three.
+    agents = [
+        _trace("ego", "Car", 0, 0, is_ego=True),
+        _trace("Bicycle1", "Bicycle", 0, 20, behavior="AdversaryBehavior"),
+        _trace("Bicycle2", "Bicycle", 0, 35, behavior="Actor2Behavior"),
+        _trace("Bicycle3", "Bicycle", 0, 50, behavior="Actor3Behavior"),
+    ]
+    conformity = check_conformity(spec, _facts(agents))
+    assert {
+        c.name: c.ok for c in conformity.checks if c.name in ("participants", "extra_actors")
+    } == {
+        "participants": True,
+        "extra_actors": True,
+    }

@@ -60,6 +60,12 @@ CASES = [
         ),
     ),
     (
+        "Three cyclists ride ahead of the ego in its lane.",
+        "Three cyclists",
+        "ahead_same_lane",
+        Truth(actors=(LabeledActor("Bicycle", 3, start=Start.AHEAD, direction=Direction.SAME),)),
+    ),
+    (
         "The ego follows a slow car while a motorcycle comes up behind it.",
         "a motorcycle",
         "behind_same_lane",

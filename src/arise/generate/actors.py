@@ -80,11 +80,14 @@ def _role(
 
 
 def read_actors(reading: Reading) -> list[Actor]:
-    """One actor per thing the description names other than the ego and the adversary."""
+    """One actor per thing the description names other than the ego and the adversary, in
+    the order of the spec's participants; then, when the text names the adversary with a
+    count ("two pedestrians cross"), one more with role adversary for the others of them."""
     cast = reading.cast
     found: list[Actor] = []
+    adversary = reading.adversary
     for mention in cast.others:
-        if mention is reading.adversary:
+        if mention is adversary:
             continue
         stretches = words_of(cast, mention)
         words = " ".join(cast.text[a:b] for a, b in stretches)
@@ -110,6 +113,15 @@ def read_actors(reading: Reading) -> list[Actor]:
                 start=start,
                 stationary=stationary or mention.is_prop,
                 quote=mention.quote,
+            )
+        )
+    if adversary is not None and adversary.count > 1:
+        found.append(
+            Actor(
+                role=ActorRole.ADVERSARY,
+                scenic_class=adversary.cls,
+                count=adversary.count - 1,
+                quote=adversary.quote,
             )
         )
     return found

@@ -362,6 +362,9 @@ def check_conformity(
     )
     others = [a for a in facts.agents if not a.is_ego and a is not adversary]
     fewest, most = actor_counts(spec.participants)
+    # The others of a counted adversary ("two pedestrians") are neither missing nor extra.
+    more = sum(a.count for a in spec.actors if a.role is ActorRole.ADVERSARY)
+    fewest, most = fewest + more, None if most is None else most + more
     add(
         ConformityCheck(
             "participants",

@@ -545,7 +545,7 @@ def _add_extras(
 MAX_ACTORS = 4
 #: Roles whose actor is placed by a misc entry, not a spawn: an occluder stands by the
 #: adversary, an obstacle is a prop.
-MISC_ROLES = frozenset({ActorRole.OCCLUDER, ActorRole.OBSTACLE, ActorRole.ADVERSARY})
+MISC_ROLES = frozenset({ActorRole.OCCLUDER, ActorRole.OBSTACLE})
 #: Where an actor starts when its words do not say, by its role.
 ROLE_STARTS: dict[ActorRole, RelativePosition] = {
     ActorRole.LEAD: RelativePosition.AHEAD_SAME_LANE,
@@ -577,8 +577,13 @@ def _actor_start(actor: Actor) -> RelativePosition | None:
 
 
 def _own_spawn(actor: Actor) -> bool:
-    """Whether the actor is a road user placed by a spawn of its own (not a misc entry)."""
-    return actor.road_user and actor.role not in MISC_ROLES and _actor_start(actor) is not None
+    """Whether the actor is a road user placed by a spawn of its own (not a misc entry;
+    the others of a counted adversary take copies of the adversary's)."""
+    return (
+        actor.road_user
+        and actor.role not in MISC_ROLES | {ActorRole.ADVERSARY}
+        and _actor_start(actor) is not None
+    )
 
 
 def _actor_spawns(
@@ -628,6 +633,9 @@ def place_actors(
         return choose_map([*so_far, *entries], maps) is not None
 
     for index, actor in enumerate(spec.actors):
+        if actor.role is ActorRole.ADVERSARY:
+            placed += _adversary_copies(index, actor, result, len(placed))
+            continue
         if not _own_spawn(actor):
             continue
         room = MAX_ACTORS - len(placed)
@@ -675,6 +683,35 @@ def place_actors(
                 )
             )
     return placed
+
+
+def _adversary_copies(
+    index: int, actor: Actor, result: Retrieval, placed_so_far: int
+) -> list[PlacedActor]:
+    """The others of a counted adversary ("two pedestrians cross"): the adversary's own
+    spawn and behavior, copied under their own names and spaced out beyond it."""
+    spawns = result.chosen.get(Component.SPAWN, [])
+    behaviors = result.chosen.get(Component.BEHAVIOR, [])
+    if not spawns or not behaviors:
+        return []
+    spawn, behavior = spawns[0], behaviors[0]
+    count = min(actor.count, MAX_ACTORS - placed_so_far)
+    if count < actor.count:
+        result.notes.append(f"actors: placed {count} more of {actor.quote!r}, not {actor.count}")
+    spacing = spawn_span(spawn) + CLASS_LENGTHS.get(actor.scenic_class, 2.0) + COPY_MARGIN
+    copies = []
+    for copy in range(1, count + 1):
+        name = f"actor{placed_so_far + copy + 1}"
+        copies.append(
+            PlacedActor(
+                index=index,
+                name=name,
+                actor=actor,
+                spawn=for_actor(spawn, name, actor.scenic_class, copy=copy, spacing=spacing),
+                behavior=for_actor(behavior, name, actor.scenic_class),
+            )
+        )
+    return copies
 
 
 def _actor_entries(
