@@ -137,3 +137,11 @@ def test_an_actor_needs_one_spawn_and_one_behavior_for_its_class(kb: KnowledgeBa
         for_actor(kb.get("behavior.slow_to_block"), "actor2", "Bus"),
     ]
     assert composition_problems([*core(kb), *bus], "Car") == []
+
+
+def test_a_fixed_distance_is_shifted_too(kb: KnowledgeBase) -> None:
+    spawn = kb.get("spawn.lead_same_lane")
+    fixed = spawn.model_copy(update={"snippet": spawn.snippet.replace("Range(15, 25)", "20")})
+    assert spawn_span(fixed) == 0
+    copy = for_actor(fixed, "actor3", "Car", copy=2, spacing=9)
+    assert "param OPT_ACTOR3_SPAWN_GAP = 38" in copy.snippet

@@ -27,8 +27,10 @@ ADVERSARY_NAME = "adversary"
 ADVERSARY_BEHAVIOR = "AdversaryBehavior"
 #: Distance parameters of a spawn, shifted for each further copy of a counted actor.
 _DISTANCE_PARAM = re.compile(r"(?:AHEAD|GAP|BEHIND|TO_JUNCTION|INTO_EXIT|BEFORE_JUNCTION)$")
+_NUMBER = r"(-?\d+(?:\.\d+)?)"
+# `param OPT_X = Range(a, b)` (groups 3, 4) or `param OPT_X = a` (group 5).
 _PARAM_RANGE = re.compile(
-    r"^(param\s+(OPT_[A-Z0-9_]+)\s*=\s*)Range\(\s*(-?\d+(?:\.\d+)?)\s*,\s*(-?\d+(?:\.\d+)?)\s*\)",
+    rf"^(param\s+(OPT_[A-Z0-9_]+)\s*=\s*)(?:Range\(\s*{_NUMBER}\s*,\s*{_NUMBER}\s*\)|{_NUMBER}\s*$)",
     re.M,
 )
 ACTOR_PATTERN = re.compile(r"^actor[0-9]+$")
@@ -102,6 +104,8 @@ def _shift_distances(snippet: str, metres: float) -> str:
     def shift(match: re.Match[str]) -> str:
         if not _DISTANCE_PARAM.search(match.group(2)):
             return match.group(0)
+        if match.group(5) is not None:
+            return f"{match.group(1)}{float(match.group(5)) + metres:g}"
         low, high = float(match.group(3)) + metres, float(match.group(4)) + metres
         return f"{match.group(1)}Range({low:g}, {high:g})"
 
@@ -112,7 +116,7 @@ def spawn_span(entry: Entry) -> float:
     """The widest range of the spawn's distance parameters (0 when fixed): how far apart two
     draws of it may fall."""
     spans = [
-        float(match.group(4)) - float(match.group(3))
+        float(match.group(4)) - float(match.group(3)) if match.group(5) is None else 0.0
         for match in _PARAM_RANGE.finditer(entry.snippet)
         if _DISTANCE_PARAM.search(match.group(2))
     ]
