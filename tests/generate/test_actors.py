@@ -396,3 +396,26 @@ def test_the_others_of_a_counted_adversary_are_copies_of_its_entries(
         "participants": True,
         "extra_actors": True,
     }
+
+
+def test_a_geometry_swap_leaves_out_an_actor_the_new_road_has_no_room_for(
+    kb: KnowledgeBase, maps: dict[str, frozenset[str]]
+) -> None:
+    from arise.generate.repair import swap_section
+
+    spec, found = retrieved(kb, maps, BUS, "A stalled car")
+    [geometry] = found.chosen[Component.GEOMETRY]
+    found.candidates[Component.GEOMETRY] = [geometry, kb.get("geometry.straight_road")]
+    context = RepairContext(
+        description=BUS,
+        retrieval=found,
+        draft=assemble(found, spec.scenic_class, BUS, params={}),
+        provider=None,
+        rules=RuleContext(adversary_class=spec.scenic_class),
+        maps=maps,
+    )
+    step = swap_section(context, "GEOMETRY")
+    assert step is not None and step.draft is not None
+    assert step.detail == f"{geometry.id} -> geometry.straight_road (without actor2)"
+    assert all(e.actor is None for e in step.draft.entries)
+    assert "geometry.straight_road" in [e.id for e in step.draft.entries]

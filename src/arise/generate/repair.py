@@ -222,20 +222,33 @@ def swap_section(context: RepairContext, name: str) -> RepairStep | None:
     else:
         tried = context.tried.setdefault(name, {e.id for e in current})
         others = [e for e in draft.entries if e not in current]
-        replacement: Entry | None = next(
-            (
-                c
-                for c in context.retrieval.candidates.get(component, [])
-                if c.id not in tried
-                and not composition_problems([*others, c], draft.adversary_class)
-            ),
-            None,
-        )
+        candidates = [
+            c for c in context.retrieval.candidates.get(component, []) if c.id not in tried
+        ]
+        replacement: Entry | None = None
+        # With the other actors if a candidate fits them, else without them (a geometry
+        # without an oncoming lane has no room for an oncoming bus): the adversary first.
+        for keep in (others, [e for e in others if e.actor is None]):
+            replacement = next(
+                (
+                    c
+                    for c in candidates
+                    if not composition_problems([*keep, c], draft.adversary_class)
+                ),
+                None,
+            )
+            if replacement is not None:
+                break
         if replacement is None:
             return None
         tried.add(replacement.id)
-        entries = [replacement if e in current else e for e in draft.entries]
+        entries = [
+            replacement if e in current else e for e in draft.entries if e in keep or e in current
+        ]
         note = f"{current[0].id if current else '-'} -> {replacement.id}"
+        left_out = sorted({e.actor for e in others if e.actor and e not in keep})
+        if left_out:
+            note += f" (without {', '.join(left_out)})"
     return _recomposed(context, entries, note)
 
 
