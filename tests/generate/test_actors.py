@@ -419,3 +419,18 @@ def test_a_geometry_swap_leaves_out_an_actor_the_new_road_has_no_room_for(
     assert step.detail == f"{geometry.id} -> geometry.straight_road (without actor2)"
     assert all(e.actor is None for e in step.draft.entries)
     assert "geometry.straight_road" in [e.id for e in step.draft.entries]
+
+
+def test_an_actors_undeclared_parameter_gets_the_entrys_default() -> None:
+    from arise.generate.rules import fix_undeclared_param
+
+    text = "actor2Start = new OrientedPoint ahead of egoStart by globalParameters.OPT_ACTOR2_SPAWN_GAP\n"
+    diagnostic = Diagnostic(
+        stage=Stage.COMPILE,
+        error_type="AttributeError",
+        message="'Params' has no attribute 'OPT_ACTOR2_SPAWN_GAP'",
+    )
+    context = RuleContext(param_defaults={"OPT_SPAWN_GAP": "Range(15, 25)"})
+    fix = fix_undeclared_param(diagnostic, text, context)
+    assert fix is not None
+    assert fix.text.splitlines()[0] == "param OPT_ACTOR2_SPAWN_GAP = Range(15, 25)"
