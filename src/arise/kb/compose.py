@@ -61,7 +61,7 @@ def composition_problems(entries: Sequence[Entry], adversary_class: str | None) 
     ids = [entry.label for entry in entries]
     for duplicate in sorted({i for i in ids if ids.count(i) > 1}):
         problems.append(f"{duplicate}: chosen twice")
-    problems += _actor_problems(entries, adversary_class)
+    problems += _actor_problems(entries)
     for component in SINGLE + OPTIONAL_SINGLE:
         chosen = [e.id for e in entries if e.component is component and e.actor is None]
         if len(chosen) > 1:
@@ -85,7 +85,7 @@ def composition_problems(entries: Sequence[Entry], adversary_class: str | None) 
     return problems
 
 
-def _actor_problems(entries: Sequence[Entry], adversary_class: str | None) -> list[str]:
+def _actor_problems(entries: Sequence[Entry]) -> list[str]:
     """Each other actor has one spawn and one behavior, written for its class."""
     problems: list[str] = []
     actors = dict.fromkeys(e.actor for e in entries if e.actor is not None)
