@@ -95,6 +95,21 @@ class RelativePosition(StrEnum):  # where the adversary starts, seen from the eg
     CROSSING_FROM_RIGHT = "crossing_road_from_right"
 
 
+class ActorRole(StrEnum):
+    """What a road user or object is for in a scene (the adversary causes the danger)."""
+
+    ADVERSARY = "adversary"
+    LEAD = "lead"  # drives ahead of the ego in its lane
+    SLOW = "slow"  # a slow vehicle the ego may have to pass
+    STOPPED = "stopped"  # stalled, broken down or stopped in the road
+    PARKED = "parked"  # parked at the roadside
+    ONCOMING = "oncoming"  # comes the other way
+    CROSSING = "crossing"  # crosses the ego's path (or waits to)
+    FOLLOWING = "following"  # behind the ego
+    OCCLUDER = "occluder"  # hides the adversary from the ego
+    OBSTACLE = "obstacle"  # a prop in or beside the road
+
+
 #: Features a map may have and a knowledge-base entry may need.
 MAP_FEATURES: tuple[str, ...] = (
     "straight",

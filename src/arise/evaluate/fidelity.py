@@ -47,6 +47,7 @@ from arise.vocabulary import (
     POINT_CLASSES,
     PROP_CLASSES,
     WEATHER_PRESETS,
+    ActorRole,
     EgoManeuver,
 )
 
@@ -84,19 +85,9 @@ DEVSET_FILES: dict[DevSet, str] = {
 }
 
 
-class Role(StrEnum):
-    """What an actor is for in the text (kept for reading the labels; not scored)."""
-
-    ADVERSARY = "adversary"
-    LEAD = "lead"
-    SLOW = "slow"
-    STOPPED = "stopped"
-    PARKED = "parked"
-    ONCOMING = "oncoming"
-    CROSSING = "crossing"
-    FOLLOWING = "following"
-    OCCLUDER = "occluder"
-    OBSTACLE = "obstacle"
+#: What an actor is for in the text (kept for reading the labels; not scored): the spec's
+#: own roles, so a label and a grounded actor use the same words.
+Role = ActorRole
 
 
 class Start(StrEnum):

@@ -180,6 +180,8 @@ def _print_grounding(run: Generation) -> None:
     console.print("  read from the description:")
     for fact in run.spec.grounding:
         console.print(f"    {escape(fact.describe())}", highlight=False)
+    for actor in run.spec.actors:
+        console.print(f"    {escape(actor.describe())}", highlight=False)
     for note in run.hint_notes:
         console.print(f"    [dim]{escape(note)}[/dim]", highlight=False)
     if run.ignored_text:

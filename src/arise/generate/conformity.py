@@ -17,7 +17,7 @@ import re
 from dataclasses import dataclass, field
 from typing import Any
 
-from arise.generate.spec import ScenarioSpec
+from arise.generate.spec import Actor, ScenarioSpec
 from arise.validate.types import (
     AgentTrace,
     CheckResult,
@@ -26,7 +26,7 @@ from arise.validate.types import (
     Stage,
     TracePoint,
 )
-from arise.vocabulary import EgoManeuver, RelativePosition, RoadType
+from arise.vocabulary import ActorRole, EgoManeuver, RelativePosition, RoadType
 
 LANE_HALF = 1.8  # |lateral offset| below this is "in the ego's lane"
 NEXT_LANE = 5.6  # up to this is the adjacent lane
@@ -362,6 +362,9 @@ def check_conformity(
     )
     others = [a for a in facts.agents if not a.is_ego and a is not adversary]
     fewest, most = actor_counts(spec.participants)
+    # The others of a counted adversary ("two pedestrians") are neither missing nor extra.
+    more = sum(a.count for a in spec.actors if a.role is ActorRole.ADVERSARY)
+    fewest, most = fewest + more, None if most is None else most + more
     add(
         ConformityCheck(
             "participants",
@@ -378,7 +381,32 @@ def check_conformity(
             True if most is None else len(others) <= most,
         )
     )
+    for index, actor in enumerate(spec.actors):
+        if actor.road_user:
+            result.checks.append(_actor_check(index, actor, ego, others))
     return result
+
+
+def _actor_check(
+    index: int, actor: Actor, ego: AgentTrace | None, others: list[AgentTrace]
+) -> ConformityCheck:
+    """Another road user of the spec: as many of its class in the trace, on its side when
+    the text says one (not gated: the participant checks are)."""
+    mine = [a for a in others if a.kind == actor.scenic_class]
+    start = actor.start
+    if actor.role is ActorRole.PARKED and start is RelativePosition.AHEAD_SAME_LANE:
+        start = None  # "parked ahead" is at the kerb ahead, not in the ego's lane
+    expected = f"{actor.count} {actor.scenic_class}"
+    observed = f"{len(mine)} {actor.scenic_class}"
+    placed = mine
+    if start is not None and ego is not None:
+        expected += f" {start.value}"
+        relations = [start_relation(ego, a) for a in mine]
+        placed = [a for a, r in zip(mine, relations, strict=True) if r and _spawn_agrees(start, r)]
+        observed += f", {len(placed)} there"
+    return ConformityCheck(
+        f"actor {index + 1}", expected, observed, len(placed) >= actor.count, gated=False
+    )
 
 
 def _allowed(most: int | None) -> str:

@@ -19,6 +19,7 @@ from __future__ import annotations
 import re
 from dataclasses import dataclass
 
+from arise.generate.actors import read_actors
 from arise.generate.facts import FactSource, GroundedFact
 from arise.generate.quotes import quote_in
 from arise.generate.readers import (
@@ -279,6 +280,7 @@ def ground(description: str, answer: ExtractionAnswer) -> Grounded:
         adversary_stationary="adversary_stationary" in facts,
         no_adversary=no_adversary,
         participants=participants,
+        actors=read_actors(reading),
         weather=facts["weather"].value,
         requirements=requirements,
         grounding=list(facts.values()),

@@ -308,7 +308,9 @@ class Generator:
             if options.mode is not Mode.CHATSCENE and run.retrieval.chosen:
                 params, notes = tune_params(
                     run.description,
-                    run.retrieval.chosen_entries(),
+                    # The other actors' copies keep their defaults: the model tunes the
+                    # adversary's scene.
+                    [e for e in run.retrieval.chosen_entries() if e.actor is None],
                     self.provider,
                     temperature=options.temperature,
                     seed=options.seed,

@@ -297,7 +297,7 @@ _STATIONARY = re.compile(
     r"at a standstill|not moving)\b",
     re.I,
 )
-_MOVING = re.compile(
+MOVING = re.compile(
     r"\b(?:pulls?|pulled|start\w*|accelerat\w*|moves?|moving|drives?|driving|turns?|"
     r"turning|cross\w*|runs?|running|rides?|riding|walks?|walking|steps?|swerv\w*|"
     r"merg\w*|cuts?|reverses?|backs?|rolls?|speeds?|brakes?|braking|slows?|suddenly|"
@@ -312,7 +312,7 @@ def read_stationary(cast: Cast, mention: Mention) -> GroundedFact | None:
     for start, end in words_of(cast, mention):
         words = cast.text[start:end]
         still = _STATIONARY.search(words)
-        if still and not _MOVING.search(words):
+        if still and not MOVING.search(words):
             return GroundedFact(
                 name="adversary_stationary",
                 value="true",

@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import re
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 
 from arise.generate.assemble import Draft, apply_params
@@ -21,7 +21,13 @@ from arise.generate.events import AttemptChecked, Progress, RunStage, StageStart
 from arise.generate.retrieve import Retrieval
 from arise.generate.rules import RuleContext, apply_rules
 from arise.generate.run import Attempt, AttemptKind, Generation, Outcome, RunStatus, unified_diff
-from arise.kb.compose import ComposeError, compose, composition_problems, pick_map
+from arise.kb.compose import (
+    ComposeError,
+    actor_at_line,
+    compose,
+    composition_problems,
+    pick_map,
+)
 from arise.kb.schema import Component, Entry
 from arise.llm.base import BaseProvider
 from arise.llm.types import Message, Usage
@@ -30,6 +36,7 @@ from arise.sections import replace_section, section_body
 from arise.validate.types import CheckResult, Diagnostic, Stage
 
 SECTION_COMPONENT = {c.section: c for c in Component}
+_UNNAMED = re.compile(r"\bunnamed (\w+)")
 _CODE_BLOCK = re.compile(r"```(?:scenic|python)?\s*\n(.*?)```", re.S)
 #: A section's model repairs that may fail before only swaps are tried for it.
 MODEL_TRIES_PER_SECTION = 2
@@ -77,6 +84,24 @@ def extract_code(reply: str) -> str | None:
     code = match.group(1) if match else reply
     code = code.strip("\n")
     return code if code.strip() else None
+
+
+def guilty_actor(script: str, diagnostic: Diagnostic, entries: Sequence[Entry] = ()) -> str | None:
+    """The other actor ('actor2') whose snippet the diagnostic's line (or its first rejection
+    with a line) is in; None when it is about the adversary or the scene. A rejection
+    without a line that names an object's class ("unnamed Bus is not contained") is about
+    the last of the other actors of that class in `entries`, if there is one."""
+    lines = [diagnostic.line] + [r.line for r in diagnostic.rejections]
+    line = next((n for n in lines if n is not None), None)
+    if line is not None:
+        return actor_at_line(script, line)
+    for rejection in diagnostic.rejections:
+        named = _UNNAMED.search(rejection.reason)
+        if named is not None:
+            mine = [e.actor for e in entries if e.actor and e.actor_class == named.group(1)]
+            if mine:
+                return mine[-1]
+    return None
 
 
 def guilty_section(diagnostic: Diagnostic) -> str | None:
@@ -187,7 +212,8 @@ def swap_section(context: RepairContext, name: str) -> RepairStep | None:
     if component is None or component is Component.WEATHER:
         return None
     draft = context.draft
-    current = [e for e in draft.entries if e.component is component]
+    # The adversary's (or the scene's) entries: the other actors' copies are not swapped.
+    current = [e for e in draft.entries if e.component is component and e.actor is None]
     if component in (Component.MISC, Component.REQUIREMENTS):
         if not current:
             return None
@@ -195,21 +221,40 @@ def swap_section(context: RepairContext, name: str) -> RepairStep | None:
         note = f"dropped {current[-1].id}"
     else:
         tried = context.tried.setdefault(name, {e.id for e in current})
-        others = [e for e in draft.entries if e.component is not component]
-        replacement: Entry | None = next(
-            (
-                c
-                for c in context.retrieval.candidates.get(component, [])
-                if c.id not in tried
-                and not composition_problems([*others, c], draft.adversary_class)
-            ),
-            None,
-        )
+        others = [e for e in draft.entries if e not in current]
+        candidates = [
+            c for c in context.retrieval.candidates.get(component, []) if c.id not in tried
+        ]
+        replacement: Entry | None = None
+        # With the other actors if a candidate fits them, else without them (a geometry
+        # without an oncoming lane has no room for an oncoming bus): the adversary first.
+        for keep in (others, [e for e in others if e.actor is None]):
+            replacement = next(
+                (
+                    c
+                    for c in candidates
+                    if not composition_problems([*keep, c], draft.adversary_class)
+                ),
+                None,
+            )
+            if replacement is not None:
+                break
         if replacement is None:
             return None
         tried.add(replacement.id)
-        entries = [replacement if e.component is component else e for e in draft.entries]
+        entries = [
+            replacement if e in current else e for e in draft.entries if e in keep or e in current
+        ]
         note = f"{current[0].id if current else '-'} -> {replacement.id}"
+        left_out = sorted({e.actor for e in others if e.actor and e not in keep})
+        if left_out:
+            note += f" (without {', '.join(left_out)})"
+    return _recomposed(context, entries, note)
+
+
+def _recomposed(context: RepairContext, entries: list[Entry], note: str) -> RepairStep | None:
+    """The draft of these entries as one swap step; None when they do not compose."""
+    draft = context.draft
     map_name = pick_map(entries, context.maps) if context.maps else draft.map_name
     if map_name is None:
         return None
@@ -225,6 +270,16 @@ def swap_section(context: RepairContext, name: str) -> RepairStep | None:
         params=draft.params,
     )
     return RepairStep(new_draft.script, AttemptKind.SWAP, note, draft=new_draft)
+
+
+def drop_actor(context: RepairContext, actor: str) -> RepairStep | None:
+    """Leave out one other actor (its spawn and behavior copies): a diagnostic about it
+    should not cost the adversary's scene. None when it is not in the draft."""
+    mine = [e for e in context.draft.entries if e.actor == actor]
+    if not mine:
+        return None
+    entries = [e for e in context.draft.entries if e.actor != actor]
+    return _recomposed(context, entries, f"dropped {actor} ({', '.join(e.id for e in mine)})")
 
 
 def semantic_repair(
@@ -273,6 +328,11 @@ def repair_once(
     fix = apply_rules(diagnostic, script, context.rules)
     if fix is not None:
         return RepairStep(fix.text, AttemptKind.RULE, f"{fix.rule}: {fix.note}")
+    actor = guilty_actor(script, diagnostic, context.draft.entries)
+    if actor is not None:
+        dropped = drop_actor(context, actor)
+        if dropped is not None:
+            return dropped
     section = guilty_section(diagnostic)
     if context.model_may_repair(section, diagnostic):
         assert section is not None

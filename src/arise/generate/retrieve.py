@@ -19,12 +19,15 @@ from dataclasses import dataclass, field
 from enum import IntEnum
 
 from arise.generate.mentions import read_cast
-from arise.generate.spec import ScenarioSpec
+from arise.generate.spec import Actor, ScenarioSpec
+from arise.kb.actors import for_actor, spawn_span
 from arise.kb.loader import KnowledgeBase
 from arise.kb.retrieval.base import Retriever
 from arise.kb.schema import CONFLICT_ROUTE, Component, Entry
 from arise.vocabulary import (
     POINT_CLASSES,
+    REFINED_CLASSES,
+    ActorRole,
     AdversaryManeuver,
     Approach,
     EgoManeuver,
@@ -96,6 +99,22 @@ STATIONARY_TAGS = frozenset({"static", "stalled"})
 POOLED = (Component.MISC, Component.REQUIREMENTS)
 
 
+@dataclass(frozen=True)
+class PlacedActor:
+    """One other road user of the spec placed by its own spawn and behavior, copied from
+    the adversary's entries under its own names (`arise.kb.actors.for_actor`)."""
+
+    index: int  # in spec.actors (and spec.participants)
+    name: str  # the script's name for it: actor2, actor3, ...
+    actor: Actor
+    spawn: Entry
+    behavior: Entry
+
+    @property
+    def entries(self) -> list[Entry]:
+        return [self.spawn, self.behavior]
+
+
 @dataclass
 class Retrieval:
     """Ranked compatible candidates per component, and the first consistent choice."""
@@ -104,9 +123,19 @@ class Retrieval:
     chosen: dict[Component, list[Entry]] = field(default_factory=dict)
     map_name: str | None = None
     notes: list[str] = field(default_factory=list)
+    actors: list[PlacedActor] = field(default_factory=list)
 
     def chosen_entries(self) -> list[Entry]:
-        return [entry for component in Component for entry in self.chosen.get(component, [])]
+        """The chosen entries in section order; the other actors' after the adversary's."""
+        placed = [entry for actor in self.actors for entry in actor.entries]
+        return [
+            entry
+            for component in Component
+            for entry in [
+                *self.chosen.get(component, []),
+                *(e for e in placed if e.component is component),
+            ]
+        ]
 
     def keep(self, topk: int) -> None:
         """Keep the first `topk` candidates of each ranked component (the chosen entry is
@@ -326,6 +355,15 @@ def retrieve(
         Component.GEOMETRY,
         geometry_pool,
     )
+    hosted = [a for a in spec.actors if _own_spawn(a)]
+    if hosted and not spec.no_adversary:
+        # Among equals, the geometry where the other road users have a spawn of their own
+        # (an oncoming bus needs an oncoming lane); the adversary's fit still decides first.
+        spawn_pool = kb.of(Component.SPAWN)
+        geometries = _prefer(
+            geometries,
+            lambda g: sum(1 for a in hosted if _actor_spawns(a, spawn_pool, g, set(), False)),
+        )
     if spec.no_adversary:
         return _scene_without_adversary(
             spec, kb, retriever, maps, choose_map, result, geometries, query, topk
@@ -386,6 +424,7 @@ def retrieve(
         Component.SPAWN: [spawn],
         Component.BEHAVIOR: [core.behaviors[0]],
     }
+    result.actors = place_actors(spec, kb, retriever, maps, choose_map, result, geometry, query)
     _add_extras(
         spec,
         kb,
@@ -393,8 +432,12 @@ def retrieve(
         maps,
         choose_map,
         result,
-        defined | set(spawn.defines) | set(core.behaviors[0].defines),
+        defined
+        | set(spawn.defines)
+        | set(core.behaviors[0].defines)
+        | {name for placed in result.actors for e in placed.entries for name in e.defines},
         query,
+        placed={placed.index for placed in result.actors},
     )
     result.map_name = choose_map(result.chosen_entries(), maps)
     if topk is not None:
@@ -449,8 +492,10 @@ def _add_extras(
     result: Retrieval,
     defined: set[str],
     query: Callable[[str], str],
+    placed: set[int] | None = None,
 ) -> None:
-    """Weather, other participants and requirements that fit the chosen core."""
+    """Weather, other participants and requirements that fit the chosen core; a
+    participant already `placed` as an actor of its own (by index) gets no misc entry."""
     weathers = kb.of(Component.WEATHER)
     exact = [e for e in weathers if f"'{spec.weather}'" in e.snippet]
     ranked = exact or _ranked(retriever, spec.weather, Component.WEATHER, weathers)
@@ -467,7 +512,8 @@ def _add_extras(
 
     misc_pool = [e for e in kb.of(Component.MISC) if fits(e)]
     chosen_misc: list[Entry] = []
-    for participant in spec.participants[:MAX_MISC]:
+    unplaced = [p for i, p in enumerate(spec.participants) if i not in (placed or set())]
+    for participant in unplaced[:MAX_MISC]:
         # Only an entry that places what the participant's words name: a bus stop is a
         # prop, not a bus; nothing is added for a thing no entry places.
         named = {mention.cls for mention in read_cast(participant).others}
@@ -491,3 +537,227 @@ def _add_extras(
                 chosen_requirements.append(entry)
     result.candidates[Component.REQUIREMENTS] = requirement_pool
     result.chosen[Component.REQUIREMENTS] = chosen_requirements
+
+
+# -- the other actors -----------------------------------------------------------------------
+
+#: At most this many other actors get a spawn of their own (copies of a count included).
+MAX_ACTORS = 4
+#: Roles whose actor is placed by a misc entry, not a spawn: an occluder stands by the
+#: adversary, an obstacle is a prop.
+MISC_ROLES = frozenset({ActorRole.OCCLUDER, ActorRole.OBSTACLE})
+#: Where an actor starts when its words do not say, by its role.
+ROLE_STARTS: dict[ActorRole, RelativePosition] = {
+    ActorRole.LEAD: RelativePosition.AHEAD_SAME_LANE,
+    ActorRole.SLOW: RelativePosition.AHEAD_SAME_LANE,
+    ActorRole.STOPPED: RelativePosition.AHEAD_SAME_LANE,
+    ActorRole.PARKED: RelativePosition.ROADSIDE_RIGHT,
+    ActorRole.ONCOMING: RelativePosition.ONCOMING,
+    ActorRole.FOLLOWING: RelativePosition.BEHIND_SAME_LANE,
+    ActorRole.CROSSING: RelativePosition.ROADSIDE_RIGHT,
+}
+#: Behavior tags preferred for an actor of each role (it keeps to its lane or route).
+ROLE_BEHAVIOR_TAGS: dict[ActorRole, frozenset[str]] = {
+    ActorRole.SLOW: frozenset({"slow_vehicle"}),
+    ActorRole.CROSSING: frozenset({"crossing"}),
+}
+STEADY_TAGS = frozenset({"steady", "cruise", "route"})
+#: Rough length of each class (metres): copies of a counted actor stand this far apart,
+#: plus a margin.
+CLASS_LENGTHS = {"Bus": 12.0, "Truck": 9.0, "Van": 6.0, "Car": 5.0, "Motorcycle": 2.5}
+COPY_MARGIN = 3.0
+
+
+def _actor_start(actor: Actor) -> RelativePosition | None:
+    """Where to place the actor: its start, else its role's; a parked vehicle "ahead" is
+    at the kerb ahead."""
+    if actor.role is ActorRole.PARKED and actor.start is RelativePosition.AHEAD_SAME_LANE:
+        return RelativePosition.ROADSIDE_RIGHT
+    return actor.start or ROLE_STARTS.get(actor.role)
+
+
+def _own_spawn(actor: Actor) -> bool:
+    """Whether the actor is a road user placed by a spawn of its own (not a misc entry;
+    the others of a counted adversary take copies of the adversary's)."""
+    return (
+        actor.road_user
+        and actor.role not in MISC_ROLES | {ActorRole.ADVERSARY}
+        and _actor_start(actor) is not None
+    )
+
+
+def _actor_spawns(
+    actor: Actor, spawns: list[Entry], geometry: Entry, used: set[str], conflict_taken: bool
+) -> list[Entry]:
+    """The spawns that can place `actor` on this geometry, on its side or the next best."""
+    start = _actor_start(actor)
+    if start is None:
+        return []
+    cls = REFINED_CLASSES.get(actor.scenic_class, actor.scenic_class)
+    defined = set(geometry.defines)
+    return [
+        e
+        for e in spawns
+        if e.suits(cls)
+        and e.id not in used
+        and set(e.needs) <= defined
+        and not (conflict_taken and CONFLICT_ROUTE in e.needs)
+        and approach_fit(start, pair_approach(geometry, e)) <= Fit.NEAR
+    ]
+
+
+def place_actors(
+    spec: ScenarioSpec,
+    kb: KnowledgeBase,
+    retriever: Retriever,
+    maps: Mapping[str, frozenset[str]],
+    choose_map: Callable[[list[Entry], Mapping[str, frozenset[str]]], str | None],
+    result: Retrieval,
+    geometry: Entry,
+    query: Callable[[str], str],
+) -> list[PlacedActor]:
+    """A spawn and a behavior of its own for each other road user of the spec (its
+    `count` of them, in a row), copied under names that do not collide.
+
+    The spawn must put the actor on the side the spec gives it (or the next best side);
+    it is never a spawn another actor already uses, nor the adversary's junction route
+    when the adversary is on it. A stopped or parked actor gets a behavior that stays put,
+    any other one that keeps to its lane or route. An actor no spawn fits is left to the
+    misc entries, with a note."""
+    placed: list[PlacedActor] = []
+    used = {e.id for e in result.chosen.get(Component.SPAWN, [])}
+    conflict_taken = any(CONFLICT_ROUTE in e.needs for e in result.chosen.get(Component.SPAWN, []))
+
+    def fits_a_map(entries: list[Entry]) -> bool:
+        so_far = [*result.chosen_entries(), *(e for p in placed for e in p.entries)]
+        return choose_map([*so_far, *entries], maps) is not None
+
+    for index, actor in enumerate(spec.actors):
+        if actor.role is ActorRole.ADVERSARY:
+            placed += _adversary_copies(index, actor, result, len(placed))
+            continue
+        if not _own_spawn(actor):
+            continue
+        room = MAX_ACTORS - len(placed)
+        if room <= 0:
+            result.notes.append(f"actors: only {MAX_ACTORS} placed; {actor.quote!r} left out")
+            break
+        start = _actor_start(actor)
+        if start is None:
+            continue
+        words = spec.participants[index] if index < len(spec.participants) else actor.quote
+        pair = _actor_entries(
+            actor,
+            start,
+            words,
+            kb,
+            retriever,
+            geometry,
+            query,
+            used,
+            conflict_taken,
+            fits_a_map,
+        )
+        if pair is None:
+            result.notes.append(
+                f"actors: no spawn and behavior place {actor.quote!r} "
+                f"{start.value.replace('_', ' ')}; left to the misc entries"
+            )
+            continue
+        spawn, behavior = pair
+        used.add(spawn.id)
+        conflict_taken |= CONFLICT_ROUTE in spawn.needs
+        count = min(actor.count, room)
+        if count < actor.count:
+            result.notes.append(f"actors: placed {count} of the {actor.count} {actor.quote!r}")
+        spacing = spawn_span(spawn) + CLASS_LENGTHS.get(actor.scenic_class, 2.0) + COPY_MARGIN
+        for copy in range(count):
+            name = f"actor{len(placed) + 2}"
+            placed.append(
+                PlacedActor(
+                    index=index,
+                    name=name,
+                    actor=actor,
+                    spawn=for_actor(spawn, name, actor.scenic_class, copy=copy, spacing=spacing),
+                    behavior=for_actor(behavior, name, actor.scenic_class),
+                )
+            )
+    return placed
+
+
+def _adversary_copies(
+    index: int, actor: Actor, result: Retrieval, placed_so_far: int
+) -> list[PlacedActor]:
+    """The others of a counted adversary ("two pedestrians cross"): the adversary's own
+    spawn and behavior, copied under their own names and spaced out beyond it."""
+    spawns = result.chosen.get(Component.SPAWN, [])
+    behaviors = result.chosen.get(Component.BEHAVIOR, [])
+    if not spawns or not behaviors:
+        return []
+    spawn, behavior = spawns[0], behaviors[0]
+    count = min(actor.count, MAX_ACTORS - placed_so_far)
+    if count < actor.count:
+        result.notes.append(f"actors: placed {count} more of {actor.quote!r}, not {actor.count}")
+    spacing = spawn_span(spawn) + CLASS_LENGTHS.get(actor.scenic_class, 2.0) + COPY_MARGIN
+    copies = []
+    for copy in range(1, count + 1):
+        name = f"actor{placed_so_far + copy + 1}"
+        copies.append(
+            PlacedActor(
+                index=index,
+                name=name,
+                actor=actor,
+                spawn=for_actor(spawn, name, actor.scenic_class, copy=copy, spacing=spacing),
+                behavior=for_actor(behavior, name, actor.scenic_class),
+            )
+        )
+    return copies
+
+
+def _actor_entries(
+    actor: Actor,
+    start: RelativePosition,
+    words: str,
+    kb: KnowledgeBase,
+    retriever: Retriever,
+    geometry: Entry,
+    query: Callable[[str], str],
+    used: set[str],
+    conflict_taken: bool,
+    fits_a_map: Callable[[list[Entry]], bool],
+) -> tuple[Entry, Entry] | None:
+    """The best spawn and behavior (as written, not yet copied) for one actor."""
+    cls = REFINED_CLASSES.get(actor.scenic_class, actor.scenic_class)
+    defined = set(geometry.defines)
+
+    def side(spawn: Entry) -> Fit:
+        return approach_fit(start, pair_approach(geometry, spawn))
+
+    spawns = _actor_spawns(actor, kb.of(Component.SPAWN), geometry, used, conflict_taken)
+    tags = set(SPAWN_TAGS[start])
+    spawns = _prefer(
+        _prefer(
+            _ranked(retriever, query(f"{words} {start.value}"), Component.SPAWN, spawns),
+            lambda e: len(tags & set(e.tags)),
+        ),
+        lambda e: -side(e),
+    )
+    still = actor.stationary or actor.role in (ActorRole.STOPPED, ActorRole.PARKED)
+    wanted = STATIONARY_TAGS if still else ROLE_BEHAVIOR_TAGS.get(actor.role, STEADY_TAGS)
+    behaviors = [
+        e
+        for e in kb.of(Component.BEHAVIOR)
+        if e.suits(cls)
+        and e.adversary_maneuver is None
+        and (not still or set(e.tags) & STATIONARY_TAGS)
+    ]
+    behaviors = _prefer(
+        _ranked(retriever, query(words), Component.BEHAVIOR, behaviors),
+        lambda e: 10 * len(wanted & set(e.tags)) + len(STEADY_TAGS & set(e.tags)),
+    )
+    for spawn in spawns:
+        both = defined | set(spawn.defines)
+        for behavior in behaviors:
+            if set(behavior.needs) <= both and fits_a_map([spawn, behavior]):
+                return spawn, behavior
+    return None

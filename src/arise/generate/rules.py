@@ -86,8 +86,11 @@ def fix_placeholders(diagnostic: Diagnostic, text: str, context: RuleContext) ->
 
 
 def _default_for(name: str, context: RuleContext) -> str:
-    if name in context.param_defaults:
-        return context.param_defaults[name]
+    # Another actor's copy of a parameter (OPT_ACTOR2_SPAWN_GAP) has the entry's default.
+    own = re.sub(r"^OPT_ACTOR\d+_", "OPT_", name)
+    for known in (name, own):
+        if known in context.param_defaults:
+            return context.param_defaults[known]
     upper = name.upper()
     if "SPEED" in upper:
         return "Range(5, 10)"

@@ -237,8 +237,21 @@ class Generation:
             "ignored_text": self.ignored_text,
             "contradictions": self.contradictions,
             "retrieved": retrieval.ids() if retrieval else {},
-            "chosen": [e.id for e in self.draft.entries] if self.draft else [],
+            "chosen": [e.label for e in self.draft.entries] if self.draft else [],
             "retrieval_notes": retrieval.notes if retrieval else [],
+            # The other road users placed by spawns of their own ("chosen" says which of
+            # them the final draft still has: a repair may leave one out).
+            "placed_actors": [
+                {
+                    "name": placed.name,
+                    "class": placed.actor.scenic_class,
+                    "role": placed.actor.role.value,
+                    "quote": placed.actor.quote,
+                    "spawn": placed.spawn.id,
+                    "behavior": placed.behavior.id,
+                }
+                for placed in (retrieval.actors if retrieval else [])
+            ],
             "map": self.draft.map_name if self.draft else None,
             "params": self.draft.params if self.draft else {},
             "first_pass_ok": self.first_pass_ok,

@@ -13,8 +13,10 @@ from pydantic import BaseModel, Field, field_validator
 
 from arise.generate.facts import FactSource, GroundedFact
 from arise.vocabulary import (
+    ACTOR_CLASSES,
     DEFAULT_WEATHER,
     WEATHER_PRESETS,
+    ActorRole,
     AdversaryManeuver,
     AdversaryType,
     EgoManeuver,
@@ -23,6 +25,8 @@ from arise.vocabulary import (
 )
 
 __all__ = [
+    "Actor",
+    "ActorRole",
     "AdversaryManeuver",
     "ExtractionAnswer",
     "AdversaryType",
@@ -48,6 +52,34 @@ class RequirementKind(StrEnum):
 class Requirement(BaseModel):
     kind: RequirementKind
     text: str = Field(description="the constraint in the description's own words")
+
+
+class Actor(BaseModel):
+    """One road user or object the description names besides the ego and the adversary,
+    read by fixed rules from its own words (`quote` is where the text names it)."""
+
+    role: ActorRole
+    scenic_class: str = Field(description="the Scenic class (Car, Van, Bus, Cone, ...)")
+    count: int = Field(default=1, ge=1, description="how many the text names")
+    start: RelativePosition | None = Field(
+        default=None, description="where it starts, seen from the ego; None: not stated"
+    )
+    stationary: bool = Field(default=False, description="the text says it stays put")
+    quote: str = Field(description="the words of the description that name it")
+
+    def describe(self) -> str:
+        """One line for the CLI: 'actor: 2 Truck, slow, ahead same lane ("Two slow trucks")'."""
+        where = self.start.value.replace("_", " ") if self.start else "start not stated"
+        still = ", stays put" if self.stationary and self.road_user else ""
+        return (
+            f"actor: {self.count} {self.scenic_class}, {self.role.value}, {where}{still} "
+            f"({self.quote!r})"
+        )
+
+    @property
+    def road_user(self) -> bool:
+        """A vehicle or a pedestrian (which gets its own spawn), not a prop."""
+        return self.scenic_class in ACTOR_CLASSES
 
 
 class ExtractionAnswer(BaseModel):
@@ -92,6 +124,10 @@ class ScenarioSpec(BaseModel):
     )
     participants: list[str] = Field(
         default_factory=list, description="other road users and objects, one per item"
+    )
+    actors: list[Actor] = Field(
+        default_factory=list,
+        description="the participants as actors (role, class, count, start), in the same order",
     )
     weather: str = Field(default=DEFAULT_WEATHER, description="a CARLA weather preset")
     requirements: list[Requirement] = Field(default_factory=list)

@@ -15,12 +15,12 @@ from collections.abc import Iterable, Mapping, Sequence
 from arise.errors import AriseError
 from arise.kb.schema import COMPONENT_ORDER, PLACEHOLDER_PATTERN, Component, Entry
 from arise.sections import MarkerKind, parse_marker, write_section
-from arise.vocabulary import ADVERSARY_CLASSES, REFINED_CLASSES
+from arise.vocabulary import ACTOR_CLASSES, ADVERSARY_CLASSES, REFINED_CLASSES
 
 SINGLE = (Component.BEHAVIOR, Component.GEOMETRY, Component.SPAWN)  # exactly one each
 OPTIONAL_SINGLE = (Component.WEATHER,)  # at most one
 ADVERSARY_COMPONENTS = (Component.BEHAVIOR, Component.SPAWN)  # absent when there is none
-ENTRY_MARK = re.compile(r"^# kb: (\S+)\s*$")
+ENTRY_MARK = re.compile(r"^# kb: (\S+)(?: as (\S+))?\s*$")
 DEFAULT_TERMINATE_SECONDS = 20.0
 
 
@@ -58,11 +58,12 @@ def composition_problems(entries: Sequence[Entry], adversary_class: str | None) 
             problems.append(
                 f"adversary class {adversary_class!r} is not one of {', '.join(ADVERSARY_CLASSES)}"
             )
-    ids = [entry.id for entry in entries]
+    ids = [entry.label for entry in entries]
     for duplicate in sorted({i for i in ids if ids.count(i) > 1}):
         problems.append(f"{duplicate}: chosen twice")
+    problems += _actor_problems(entries)
     for component in SINGLE + OPTIONAL_SINGLE:
-        chosen = [e.id for e in entries if e.component is component]
+        chosen = [e.id for e in entries if e.component is component and e.actor is None]
         if len(chosen) > 1:
             problems.append(f"{', '.join(chosen)}: only one {component.value} entry fits")
         elif adversary_class is None and chosen and component in ADVERSARY_COMPONENTS:
@@ -74,11 +75,39 @@ def composition_problems(entries: Sequence[Entry], adversary_class: str | None) 
         ):
             problems.append(f"no {component.value} entry was chosen")
     for entry in entries:
+        if entry.actor is not None:
+            continue  # checked against the actor's own class
         if adversary_class is not None and not entry.suits(adversary_class):
             problems.append(
                 f"{entry.id}: written for {', '.join(entry.adversaries)}, not {adversary_class}"
             )
     problems += _name_problems(_ordered(entries))
+    return problems
+
+
+def _actor_problems(entries: Sequence[Entry]) -> list[str]:
+    """Each other actor has one spawn and one behavior, written for its class."""
+    problems: list[str] = []
+    actors = dict.fromkeys(e.actor for e in entries if e.actor is not None)
+    for actor in actors:
+        mine = [e for e in entries if e.actor == actor]
+        for component in ADVERSARY_COMPONENTS:
+            chosen = [e.label for e in mine if e.component is component]
+            if len(chosen) != 1:
+                problems.append(
+                    f"{actor}: needs one {component.value} entry, has "
+                    f"{', '.join(chosen) if chosen else 'none'}"
+                )
+        for entry in mine:
+            cls = entry.actor_class or ""
+            if entry.component not in ADVERSARY_COMPONENTS:
+                problems.append(f"{entry.label}: only spawn and behavior entries place an actor")
+            elif cls not in ACTOR_CLASSES:
+                problems.append(f"{entry.label}: {cls!r} is not a road user's class")
+            elif not entry.suits(REFINED_CLASSES.get(cls, cls)):
+                problems.append(
+                    f"{entry.label}: written for {', '.join(entry.adversaries)}, not {cls}"
+                )
     return problems
 
 
@@ -105,14 +134,14 @@ def _name_problems(ordered: Sequence[Entry]) -> list[str]:
         ]
         if missing:
             problems.append(
-                f"{entry.id}: needs {', '.join(missing)}, which no "
+                f"{entry.label}: needs {', '.join(missing)}, which no "
                 f"{'chosen' if entry.component is Component.BEHAVIOR else 'earlier'}"
                 " entry defines"
             )
         for name in entry.defines:
             if name in owner:
-                problems.append(f"{entry.id}: defines {name}, already defined by {owner[name]}")
-            owner.setdefault(name, entry.id)
+                problems.append(f"{entry.label}: defines {name}, already defined by {owner[name]}")
+            owner.setdefault(name, entry.label)
         defined |= set(entry.defines)
     return problems
 
@@ -142,7 +171,8 @@ def compose(
     """Assemble one complete script: HEADER from `map_name`, then the entries' sections.
 
     entries: exactly one behavior, geometry and spawn entry; at most one weather entry;
-        any number of misc and requirements entries (in the order given).
+        any number of misc and requirements entries (in the order given); and for each
+        other actor placed, one spawn and one behavior copy (`arise.kb.actors.for_actor`).
     adversary_class: what `{{ADVERSARY_CLASS}}` becomes (Car, Truck, Motorcycle, Bicycle,
         Pedestrian, or Van and Bus, which fit where a Car and a Truck do); every entry must
         suit it. None: the scene has no adversary (no spawn or behavior entry).
@@ -168,8 +198,8 @@ def compose(
         chosen = [entry for entry in ordered if entry.component is component]
         body: list[str] = []
         for entry in chosen:
-            body.append(f"# kb: {entry.id}")
-            body.append(fill_placeholders(entry.snippet.rstrip("\n"), values, entry.id))
+            body.append(f"# kb: {entry.label}")
+            body.append(fill_placeholders(entry.snippet.rstrip("\n"), values, entry.label))
         if (
             component is Component.REQUIREMENTS
             and terminate_after is not None
@@ -182,16 +212,30 @@ def compose(
 
 def entry_at_line(script: str, line: int | None) -> str | None:
     """The id of the entry whose snippet holds this (1-based) line of a composed script."""
+    found = mark_at_line(script, line)
+    return found[0] if found else None
+
+
+def actor_at_line(script: str, line: int | None) -> str | None:
+    """The other actor ('actor2') whose snippet holds this line; None for the adversary's
+    or the scene's entries."""
+    found = mark_at_line(script, line)
+    return found[1] if found else None
+
+
+def mark_at_line(script: str, line: int | None) -> tuple[str, str | None] | None:
+    """(entry id, actor or None) of the `# kb:` mark above this (1-based) line, within its
+    section."""
     if line is None:
         return None
-    found = None
+    found: tuple[str, str | None] | None = None
     for number, text in enumerate(script.splitlines(), start=1):
         if number > line:
             break
         mark = ENTRY_MARK.match(text)
         marker = parse_marker(text)
         if mark:
-            found = mark.group(1)
+            found = (mark.group(1), mark.group(2))
         elif marker is not None and marker.kind is MarkerKind.END:
             found = None
     return found

@@ -89,6 +89,14 @@ class Entry(BaseModel):
     source: str | None = Field(
         default=None, description="file the entry came from (set by the loader)"
     )
+    actor: str | None = Field(
+        default=None,
+        description="set on a copy made by `arise.kb.actors.for_actor`: the other actor "
+        "('actor2') it places or moves instead of the adversary; never in the data files",
+    )
+    actor_class: str | None = Field(
+        default=None, description="that actor's Scenic class (set with `actor`)"
+    )
 
     @field_validator("id")
     @classmethod
@@ -172,6 +180,11 @@ class Entry(BaseModel):
                 f"a geometry states approach or maneuver only for the {CONFLICT_ROUTE} it defines"
             )
         return self
+
+    @property
+    def label(self) -> str:
+        """How the script's `# kb:` mark names it: the id, and the actor a copy places."""
+        return f"{self.id} as {self.actor}" if self.actor else self.id
 
     def suits(self, adversary_class: str) -> bool:
         """True when this entry works with that adversary class."""
