@@ -64,8 +64,10 @@ def summarise(records: Sequence[RunRecord], truths: dict[str, dict[str, Any]]) -
             row = by_fact.setdefault(verdict["fact"], [0, 0])
             row[1] += 1
             row[0] += bool(verdict["match"])
-            if verdict["fact"] == FactKind.START and subject and (
-                verdict["subject"] == subject or verdict["subject"].startswith(f"{subject}#1")
+            if (
+                verdict["fact"] == FactKind.START
+                and subject
+                and (verdict["subject"] == subject or verdict["subject"].startswith(f"{subject}#1"))
             ):
                 side[1] += 1
                 side[0] += bool(verdict["match"])
@@ -110,7 +112,9 @@ def table(name: str, before: Summary, after: Summary) -> str:
     for fact in FactKind:
         old, new = before.by_fact.get(fact.value), after.by_fact.get(fact.value)
         if old or new:
-            lines.append(f"| fact: {fact.value} | {_share(old or (0, 0))} | {_share(new or (0, 0))} |")
+            lines.append(
+                f"| fact: {fact.value} | {_share(old or (0, 0))} | {_share(new or (0, 0))} |"
+            )
     return "\n".join(lines)
 
 
