@@ -282,3 +282,27 @@ def test_an_adversary_that_stays_put_is_read_from_its_own_words(
 ) -> None:
     spec = ground(text, answer(adversary="taxi" if "taxi" in text else "")).spec
     assert spec.adversary_stationary is stationary
+
+
+def test_an_object_of_a_class_the_text_never_names_is_extra() -> None:
+    from arise.generate.conformity import check_conformity
+    from arise.validate.types import AgentTrace, SimulationFacts, TracePoint
+
+    def agent(name: str, kind: str, x: float, ego: bool = False) -> AgentTrace:
+        point = TracePoint(step=0, time=0.0, x=x, y=0.0, heading=0.0, speed=0.0)
+        return AgentTrace(
+            name=name, kind=kind, width=2.0, length=4.5, is_ego=ego, trajectory=[point]
+        )
+
+    text = "The ego turns left at a junction and a box lies in the lane it turns into."
+    spec = ground(text, answer()).spec
+    facts = SimulationFacts(
+        steps=0,
+        timestep=0.1,
+        termination_type="time_limit",
+        termination_reason="test",
+        agents=[agent("ego", "Car", 0.0, ego=True), agent("c", "Car", 9)],
+    )
+    checks = {c.name: c for c in check_conformity(spec, facts).checks}
+    assert checks["participants"].ok is False and "no Box" in checks["participants"].observed
+    assert checks["extra_actors"].ok is False

@@ -17,6 +17,7 @@ import re
 from dataclasses import dataclass, field
 from typing import Any
 
+from arise.generate.mentions import read_cast
 from arise.generate.spec import Actor, ScenarioSpec
 from arise.validate.types import (
     AgentTrace,
@@ -365,20 +366,25 @@ def check_conformity(
     # The others of a counted adversary ("two pedestrians") are neither missing nor extra.
     more = sum(a.count for a in spec.actors if a.role is ActorRole.ADVERSARY)
     fewest, most = fewest + more, None if most is None else most + more
+    named = _named_classes(spec)
+    missing = sorted(cls for cls in named if not any(_same_class(a.kind, cls) for a in others))
     add(
         ConformityCheck(
             "participants",
-            f"at least {fewest} other object(s)",
-            f"{len(others)}",
-            len(others) >= fewest,
+            f"at least {fewest} other object(s)"
+            + (f": {', '.join(sorted(named))}" if named else ""),
+            f"{len(others)}" + (f", no {', '.join(missing)}" if missing else ""),
+            len(others) >= fewest and not missing,
         )
     )
+    # An object of a class the text never names is extra, however few there are.
+    unnamed = [a for a in others if not any(_same_class(a.kind, cls) for cls in named)]
     add(
         ConformityCheck(
             "extra_actors",
-            _allowed(most),
+            _allowed(most) + (f", only {', '.join(sorted(named))}" if named else ""),
             _describe_others(others),
-            True if most is None else len(others) <= most,
+            (True if most is None else len(others) <= most) and not unnamed,
         )
     )
     for index, actor in enumerate(spec.actors):
@@ -413,6 +419,18 @@ def _allowed(most: int | None) -> str:
     if most is None:
         return "any number of other objects"
     return "no other object" if most == 0 else f"at most {most} other object(s)"
+
+
+def _named_classes(spec: ScenarioSpec) -> set[str]:
+    """The classes of what the text names besides the adversary (its other copies too)."""
+    named = {mention.cls for words in spec.participants for mention in read_cast(words).others}
+    named |= {actor.scenic_class for actor in spec.actors}
+    return named
+
+
+def _same_class(kind: str, named: str) -> bool:
+    """A trace agent of class `kind` is the thing named `named` (an NPCCar is a Car)."""
+    return kind == named or (kind == "NPCCar" and named == "Car")
 
 
 def _describe_others(others: list[AgentTrace]) -> str:
