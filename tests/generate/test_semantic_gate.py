@@ -4,6 +4,7 @@ script that ran with the fewest contradictions when the budget is spent."""
 
 from __future__ import annotations
 
+import tempfile
 from collections.abc import Iterable
 from typing import Any
 
@@ -60,8 +61,10 @@ def test_the_gate_is_on_by_default_in_arise_mode_and_never_in_the_baselines() ->
 
 
 def _captured_options(monkeypatch: pytest.MonkeyPatch, module: str, name: str) -> list[Any]:
-    """Replace `module.name` by a recorder that stops the command right after it."""
+    """Replace `module.name` by a recorder that stops the command right after it (the
+    stop reaches the CLI's crash handler: its report goes to a scratch cache folder)."""
     seen: list[Any] = []
+    monkeypatch.setenv("ARISE_CACHE_DIR", tempfile.mkdtemp(prefix="arise-test-cache-"))
 
     class Stop(Exception):
         pass
