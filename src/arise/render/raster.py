@@ -288,7 +288,7 @@ def frames(scene: Scene, stride: int, dpi: int = 60) -> Iterator[np.ndarray]:
             canvas.restore_region(background)
             for artist in agents.show(step):
                 ax.draw_artist(artist)
-            clock.set_text(f"t = {step * scene.timestep:5.1f} s\n    / {total:.1f} s")
+            clock.set_text(f"t = {step * scene.timestep:.1f} s\nof {total:.1f} s")
             side.draw_artist(clock)
             canvas.blit(fig.bbox)
             yield np.asarray(canvas.buffer_rgba())[:, :, :3].copy()
