@@ -11,12 +11,14 @@ from pathlib import Path
 
 import pytest
 from PIL import Image
+from shapely.geometry import LineString, Polygon
 
+from arise.maps.registry import MapRegistry
 from arise.render.framing import MAX_SIZE_M, focus, frame
 from arise.render.gif import encode_gif
 from arise.render.html import replay_html, scene_data
-from arise.render.model import RegionKind, Role
-from arise.render.outline import load_network
+from arise.render.model import RegionKind, Role, Window
+from arise.render.outline import load_network, outline_of
 from arise.render.raster import frames, still_png
 from arise.validate.picture import scene_of, track_of
 from tests.present.traces import STEPS, TIMESTEP, agents, simulation, straight_map
@@ -175,3 +177,21 @@ def test_a_title_that_names_a_placeholder_stays_a_title() -> None:
     facts = simulation()
     page = replay_html(scene_of(facts.agents, [], facts.timestep, "__DATA__"))
     assert "<title>__DATA__</title>" in page
+
+
+def test_junctions_are_areas_and_carry_no_painted_lines() -> None:
+    network = load_network(MapRegistry(None).resolve("arise_intersection4").path)
+    outline = outline_of(network, Window(-40, -40, 40, 40))
+    junctions = [a for a in outline.areas if a.kind is RegionKind.JUNCTION]
+    assert junctions
+    junction = Polygon(junctions[0].exterior).buffer(-0.5)
+    for line in outline.lines:
+        assert not LineString(line.points).within(junction)
+        assert LineString(line.points).intersection(junction).length < 0.5
+
+
+def test_a_scene_without_a_map_has_an_empty_outline_but_draws() -> None:
+    facts = simulation()
+    scene = scene_of(facts.agents, facts.collisions, facts.timestep, "no map")
+    assert scene.outline.areas == [] and scene.outline.lines == []
+    assert Image.open(io.BytesIO(still_png(scene, dpi=40))).format == "PNG"

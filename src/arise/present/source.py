@@ -110,10 +110,10 @@ def run_check_options(report: dict[str, Any], map_dir: str | None) -> CheckOptio
     return CheckOptions.model_validate(chosen)
 
 
-def _checked(
-    script: Path, options: CheckOptions, pool: WorkerPool | None, notes: list[str]
+def from_check(
+    script: Path, result: CheckResult, options: CheckOptions, notes: list[str] | None = None
 ) -> TraceSource:
-    result: CheckResult = check(script, options, pool=pool)
+    """The trace of a check that ran (raises ScriptDidNotRun for one that did not)."""
     if not result.ok or result.simulation is None:
         reason = result.diagnostic.one_line() if result.diagnostic else "no simulation"
         raise ScriptDidNotRun(f"{script} did not run in the validator: {reason}")
@@ -126,8 +126,14 @@ def _checked(
         origin=Origin.CHECKED,
         seed=options.seed,
         steps=options.steps,
-        notes=notes + result.warnings[:3],
+        notes=(notes or []) + result.warnings[:3],
     )
+
+
+def _checked(
+    script: Path, options: CheckOptions, pool: WorkerPool | None, notes: list[str]
+) -> TraceSource:
+    return from_check(script, check(script, options, pool=pool), options, notes)
 
 
 def load_trace(

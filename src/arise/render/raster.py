@@ -21,15 +21,6 @@ MAP_INCHES = (8.0, 6.0)  # the map axes; 4:3 like the window framing picks
 SIDE_INCHES = 2.5  # the legend panel right of the map: it covers no road
 
 
-def _matplotlib() -> Any:
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    return plt
-
-
 def box_corners(pose: Pose, width: float, length: float) -> list[tuple[float, float]]:
     """An agent's footprint with a nose at its front, so its heading shows."""
     fx, fy = -math.sin(pose.heading), math.cos(pose.heading)
@@ -59,9 +50,13 @@ def _area_path(area: Area) -> Any:
 
 
 def _figure(scene: Scene, dpi: int) -> tuple[Any, Any, Any]:
-    plt = _matplotlib()
+    # A Figure with its own Agg canvas, not pyplot: no global state, safe in any thread.
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+
     width = MAP_INCHES[0] + SIDE_INCHES
-    fig = plt.figure(figsize=(width, MAP_INCHES[1] + 0.5), dpi=dpi)
+    fig = Figure(figsize=(width, MAP_INCHES[1] + 0.5), dpi=dpi)
+    FigureCanvasAgg(fig)
     fig.patch.set_facecolor("white")
     left = 0.05
     ax = fig.add_axes(
@@ -242,55 +237,45 @@ def notes(scene: Scene) -> list[str]:
 def still_png(scene: Scene, dpi: int = 100) -> bytes:
     """The scene at its interaction (or its end): trails so far, the ego's start and path,
     every agent at that moment, contacts, and a legend beside the map."""
-    plt = _matplotlib()
     fig, ax, side = _figure(scene, dpi)
-    try:
-        _draw_roads(ax, scene)
-        _draw_ego_start(ax, scene)
-        step = scene.focus_step if scene.focus_step is not None else scene.steps
-        agents = _Agents(ax, scene, animated=False)
-        agents.show(step)
-        moment = (
-            "first contact"
-            if scene.contacts and step == min(c.step for c in scene.contacts)
-            else ("closest approach" if scene.focus_step is not None else "end")
-        )
-        _draw_legend(
-            side, scene, [f"shown at t = {step * scene.timestep:.1f} s ({moment})", *notes(scene)]
-        )
-        out = io.BytesIO()
-        fig.savefig(out, format="png", dpi=dpi)
-        return out.getvalue()
-    finally:
-        plt.close(fig)
+    _draw_roads(ax, scene)
+    _draw_ego_start(ax, scene)
+    step = scene.focus_step if scene.focus_step is not None else scene.steps
+    _Agents(ax, scene, animated=False).show(step)
+    moment = (
+        "first contact"
+        if scene.contacts and step == min(c.step for c in scene.contacts)
+        else ("closest approach" if scene.focus_step is not None else "end")
+    )
+    _draw_legend(
+        side, scene, [f"shown at t = {step * scene.timestep:.1f} s ({moment})", *notes(scene)]
+    )
+    out = io.BytesIO()
+    fig.savefig(out, format="png", dpi=dpi)
+    return out.getvalue()
 
 
 def frames(scene: Scene, stride: int, dpi: int = 60) -> Iterator[np.ndarray]:
     """One RGB image every `stride` steps, from step 0 to the last step."""
-    plt = _matplotlib()
     fig, ax, side = _figure(scene, dpi)
-    try:
-        _draw_roads(ax, scene)
-        _draw_ego_start(ax, scene)
-        _draw_legend(side, scene, notes(scene))
-        agents = _Agents(ax, scene, animated=True)
-        clock = side.text(
-            0.0, 0.32, "", fontsize=11, family="monospace", animated=True, transform=side.transAxes
-        )
-        canvas = fig.canvas
-        canvas.draw()
-        background = canvas.copy_from_bbox(fig.bbox)
-        total = scene.steps * scene.timestep
-        steps = list(range(0, scene.steps + 1, stride))
-        if steps[-1] != scene.steps:
-            steps.append(scene.steps)
-        for step in steps:
-            canvas.restore_region(background)
-            for artist in agents.show(step):
-                ax.draw_artist(artist)
-            clock.set_text(f"t = {step * scene.timestep:5.1f} s\n    / {total:.1f} s")
-            side.draw_artist(clock)
-            canvas.blit(fig.bbox)
-            yield np.asarray(canvas.buffer_rgba())[:, :, :3].copy()
-    finally:
-        plt.close(fig)
+    _draw_roads(ax, scene)
+    _draw_ego_start(ax, scene)
+    _draw_legend(side, scene, notes(scene))
+    agents = _Agents(ax, scene, animated=True)
+    clock = side.text(
+        0.0, 0.32, "", fontsize=11, family="monospace", animated=True, transform=side.transAxes
+    )
+    canvas = fig.canvas
+    canvas.draw()
+    background = canvas.copy_from_bbox(fig.bbox)
+    total = scene.steps * scene.timestep
+    steps = list(range(0, scene.steps + 1, stride))
+    if steps[-1] != scene.steps:
+        steps.append(scene.steps)
+    for step in steps:
+        canvas.restore_region(background)
+        for artist in agents.show(step):
+            ax.draw_artist(artist)
+        clock.set_text(f"t = {step * scene.timestep:.1f} s\nof {total:.1f} s")
+        side.draw_artist(clock)
+        yield np.asarray(canvas.buffer_rgba())[:, :, :3].copy()
