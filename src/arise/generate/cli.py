@@ -31,7 +31,8 @@ errors = Console(stderr=True, soft_wrap=True)
 GENERATE_HELP = """Turn traffic-scenario descriptions into executable Scenic 3 scripts.
 
 Each description goes through extraction, retrieval from the knowledge base, assembly and
-the test-and-repair loop; DIR gets scenario.scenic, report.json, scene.png and attempts/.
+the test-and-repair loop; DIR gets scenario.scenic, report.json, scene.png and attempts/,
+and for a script that ran trace.json, replay.gif, replay.html, scenario.xosc and its map.
 
 Examples:
 

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import re
 import time
+import warnings
 from collections.abc import Callable
 from pathlib import Path
 from typing import Any
@@ -37,6 +38,8 @@ from arise.kb.retrieval.base import Retriever
 from arise.kb.schema import Component
 from arise.llm.accounting import UsageLedger
 from arise.llm.types import LLMError, Usage
+from arise.present.outputs import write_run_files
+from arise.present.source import from_check
 from arise.validate import CheckOptions, CheckResult, Diagnostic, Stage, WorkerPool, check_text
 
 __all__ = ["Generation", "Generator", "ReconfigureError", "generate", "slug"]
@@ -362,7 +365,19 @@ class Generator:
             if final and result is not None and result.script:
                 write_script(run.out_dir, result.script, result.executed)
                 write_scene_picture(run.out_dir, attempt_png(run.out_dir, result.index))
+                check = result.check
+                if result.executed and check is not None and check.simulation is not None:
+                    self._present(run.out_dir, check)
         write_report(run.out_dir, run.report())
+
+    def _present(self, folder: Path, result: CheckResult) -> None:
+        """trace.json, replay.gif, replay.html, scenario.xosc and the map's .xodr of the
+        script that ran; a run never fails for want of them."""
+        try:
+            source = from_check(folder / "scenario.scenic", result, self.check_options())
+            write_run_files(source, folder, map_dir=self.options.map_dir)
+        except AriseError as error:
+            warnings.warn(f"replay and export not written: {error}", stacklevel=2)
 
 
 def compose_failure(error: ComposeError) -> Attempt:

@@ -506,6 +506,7 @@ def _run_stages(
                 options.png,
                 title,
                 result.simulation.collisions,
+                result.simulation.timestep,
             )
             timings["png"] = round(time.perf_counter() - started, 3)
         simulator.destroy()
