@@ -91,15 +91,24 @@ def measure(name: str, source: TraceSource, folder: Path) -> Row:
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__)
     parser.add_argument("--steps", type=int, default=200)
-    parser.add_argument("--runs", type=Path, help="a folder of run folders to add")
+    parser.add_argument(
+        "--runs", type=Path, action="append", default=[], help="a folder of run folders to add"
+    )
+    parser.add_argument("--no-examples", action="store_true", help="only the run folders")
+    parser.add_argument("--summary", action="store_true", help="one line per group, no table")
     args = parser.parse_args()
     rows: list[Row] = []
+    groups: dict[str, list[Row]] = {}
     with WorkerPool(size=1) as pool, tempfile.TemporaryDirectory() as scratch:
-        for script in SCRIPTS:
-            source = load_trace(script, pool=pool, options=CheckOptions(seed=1, steps=args.steps))
-            rows.append(measure(script.stem, source, Path(scratch) / script.stem))
-        if args.runs:
-            for report in sorted(args.runs.glob("**/report.json")):
+        if not args.no_examples:
+            for script in SCRIPTS:
+                options = CheckOptions(seed=1, steps=args.steps)
+                source = load_trace(script, pool=pool, options=options)
+                row = measure(script.stem, source, Path(scratch) / script.stem)
+                rows.append(row)
+                groups.setdefault("examples", []).append(row)
+        for folder in args.runs:
+            for report in sorted(folder.glob("**/report.json")):
                 run = report.parent
                 if json.loads(report.read_text()).get("status") != "executed":
                     continue
@@ -108,13 +117,18 @@ def main() -> None:
                 except PresentError as error:
                     print(f"skipped {run}: {error}")
                     continue
-                name = str(run.relative_to(args.runs))
-                rows.append(measure(name, source, Path(scratch) / name.replace("/", "_")))
+                name = f"{folder.name}/{run.relative_to(folder)}"
+                row = measure(name, source, Path(scratch) / name.replace("/", "_"))
+                rows.append(row)
+                groups.setdefault(str(folder), []).append(row)
     load = os.getloadavg()[0]
     print(
         f"machine: {os.cpu_count()} cores, {platform.machine()}, Python "
         f"{platform.python_version()}; load average at the end {load:.1f}\n"
     )
+    if args.summary:
+        _summary(groups)
+        return
     print(
         "| script | map | agents | steps | replay s (scene+GIF+HTML) | GIF s | PNG s | export s"
         " | GIF KiB | HTML KiB | PNG KiB | xosc KiB | vertices | XSD | ASAM | worst gap m |"
@@ -140,6 +154,25 @@ def main() -> None:
         f"ASAM ok {sum(r.asam_ok for r in rows)}/{len(rows)}, "
         f"worst gap {max(r.worst_gap_m for r in rows):.3f} m"
     )
+
+
+def _summary(groups: dict[str, list[Row]]) -> None:
+    print(
+        "| traces | n | replay s median (max) | export s median | GIF KiB median (max) "
+        "| HTML KiB median | xosc KiB median (max) | XSD ok | ASAM ok | worst gap m |"
+    )
+    print("|---|---|---|---|---|---|---|---|---|---|")
+    for name, rows in groups.items():
+        print(
+            f"| {name} | {len(rows)} | {statistics.median(r.replay_s for r in rows):.2f} "
+            f"({max(r.replay_s for r in rows):.2f}) | "
+            f"{statistics.median(r.export_s for r in rows):.3f} | "
+            f"{statistics.median(r.gif_kb for r in rows):.0f} ({max(r.gif_kb for r in rows):.0f}) | "
+            f"{statistics.median(r.html_kb for r in rows):.0f} | "
+            f"{statistics.median(r.xosc_kb for r in rows):.0f} ({max(r.xosc_kb for r in rows):.0f}) | "
+            f"{sum(r.xsd_ok for r in rows)}/{len(rows)} | {sum(r.asam_ok for r in rows)}/{len(rows)} | "
+            f"{max(r.worst_gap_m for r in rows):.3f} |"
+        )
 
 
 if __name__ == "__main__":
