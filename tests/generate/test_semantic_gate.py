@@ -306,6 +306,8 @@ def test_no_repair_left_also_keeps_a_script_that_ran() -> None:
     outcome = repair_loop(run, draft.script, validate, context, max_repairs=5)
     assert outcome.status is RunStatus.EXECUTED and outcome.final == 0
     assert (outcome.message or "").startswith("no repair left for: semantic [WEATHER]")
+    # The search that found no repair is part of what the gate cost.
+    assert run.gate_seconds == run.unused_repair_seconds > 0
 
 
 def test_a_run_where_nothing_ran_still_fails() -> None:

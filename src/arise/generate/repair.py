@@ -455,6 +455,9 @@ def repair_loop(
         if step.model_failed_on is not None:
             context.count_model_failure(step.model_failed_on)
         if step.script is None:
+            # The search for a repair that found none (model fixes that came back unusable
+            # included) took time too: the gate's cost counts it.
+            run.unused_repair_seconds += repair_seconds
             return settle(run, f"no repair left for: {diagnostic.one_line()}")
         if step.draft is not None:
             context.draft = step.draft

@@ -127,6 +127,8 @@ class Generation:
     spec: ScenarioSpec | None = None
     hint_notes: list[str] = field(default_factory=list)
     ignored_text: list[str] = field(default_factory=list)  # input that is not the scenario
+    # Time of the last repair search, when it found no repair (no attempt holds it).
+    unused_repair_seconds: float = 0.0
     contradictions: list[str] = field(default_factory=list)
     retrieval: Retrieval | None = None
     draft: Draft | None = None
@@ -191,7 +193,8 @@ class Generation:
         first = next((a for a in self.attempts if a.executed), None)
         if first is None or first.ok:
             return 0.0
-        return sum(a.seconds for a in self.attempts[first.index + 1 :])
+        tried = sum(a.seconds for a in self.attempts[first.index + 1 :])
+        return tried + self.unused_repair_seconds
 
     def gate_report(self) -> dict[str, Any]:
         verdict = self.gate
