@@ -670,18 +670,28 @@ def place_actors(
         count = min(actor.count, room)
         if count < actor.count:
             result.notes.append(f"actors: placed {count} of the {actor.count} {actor.quote!r}")
-        spacing = spawn_span(spawn) + CLASS_LENGTHS.get(actor.scenic_class, 2.0) + COPY_MARGIN
-        for copy in range(count):
-            name = f"actor{len(placed) + 2}"
-            placed.append(
-                PlacedActor(
-                    index=index,
-                    name=name,
-                    actor=actor,
-                    spawn=for_actor(spawn, name, actor.scenic_class, copy=copy, spacing=spacing),
-                    behavior=for_actor(behavior, name, actor.scenic_class),
-                )
+        placed += _copies(index, actor, spawn, behavior, len(placed) + 2, range(count))
+    return placed
+
+
+def _copies(
+    index: int, actor: Actor, spawn: Entry, behavior: Entry, first_number: int, copies: range
+) -> list[PlacedActor]:
+    """`actor`'s spawn and behavior copied under the names actor<first_number>, ...; copy k
+    is spaced k rows out along its spawn (copy 0 stands where the spawn puts it)."""
+    spacing = spawn_span(spawn) + CLASS_LENGTHS.get(actor.scenic_class, 2.0) + COPY_MARGIN
+    placed = []
+    for number, copy in enumerate(copies, start=first_number):
+        name = f"actor{number}"
+        placed.append(
+            PlacedActor(
+                index=index,
+                name=name,
+                actor=actor,
+                spawn=for_actor(spawn, name, actor.scenic_class, copy=copy, spacing=spacing),
+                behavior=for_actor(behavior, name, actor.scenic_class),
             )
+        )
     return placed
 
 
@@ -698,20 +708,7 @@ def _adversary_copies(
     count = min(actor.count, MAX_ACTORS - placed_so_far)
     if count < actor.count:
         result.notes.append(f"actors: placed {count} more of {actor.quote!r}, not {actor.count}")
-    spacing = spawn_span(spawn) + CLASS_LENGTHS.get(actor.scenic_class, 2.0) + COPY_MARGIN
-    copies = []
-    for copy in range(1, count + 1):
-        name = f"actor{placed_so_far + copy + 1}"
-        copies.append(
-            PlacedActor(
-                index=index,
-                name=name,
-                actor=actor,
-                spawn=for_actor(spawn, name, actor.scenic_class, copy=copy, spacing=spacing),
-                behavior=for_actor(behavior, name, actor.scenic_class),
-            )
-        )
-    return copies
+    return _copies(index, actor, spawn, behavior, placed_so_far + 2, range(1, count + 1))
 
 
 def _actor_entries(
