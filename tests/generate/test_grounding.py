@@ -121,6 +121,12 @@ def test_weather_comes_from_weather_words_only(text: str, preset: str, source: F
         ("A woman on the opposite sidewalk starts to cross.", "roadside_left"),
         ("The ego follows a lead truck that stops suddenly.", "ahead_same_lane"),
         (
+            "Ego vehicle stopped at an intersection is struck from behind by a following car.",
+            "behind_same_lane",
+        ),
+        ("The ego waits at a light when a following van fails to stop.", "behind_same_lane"),
+        ("The ego is cut off from the right by a taxi.", "crossing_road_from_right"),
+        (
             "The ego moves into the right lane where a scooter is riding in that lane.",
             "adjacent_lane_right",
         ),
@@ -306,3 +312,20 @@ def test_an_object_of_a_class_the_text_never_names_is_extra() -> None:
     checks = {c.name: c for c in check_conformity(spec, facts).checks}
     assert checks["participants"].ok is False and "no Box" in checks["participants"].observed
     assert checks["extra_actors"].ok is False
+
+
+@pytest.mark.parametrize(
+    ("text", "stopped"),
+    [
+        ("The ego waits at a red light; a bus runs its red light and turns left.", True),
+        ("Ego vehicle stopped at an intersection is struck from behind by a following car.", True),
+        ("The AV was stopped in traffic behind a bus when a sedan hit its rear.", True),
+        ("While the ego waits to turn left, an oncoming motorcycle goes straight.", False),
+        ("The ego turns left and stops a metre short of a pedestrian.", False),
+        ("A motorcycle is stopped in the lane the ego enters.", False),
+        ("The AV stopped, but its bumper touched the pedestrian.", False),
+    ],
+)
+def test_an_ego_held_still_is_read_from_words_about_the_ego(text: str, stopped: bool) -> None:
+    reading = read_description(text)
+    assert ("ego_stopped" in reading.facts) is stopped

@@ -164,6 +164,9 @@ def test_every_specific_junction_geometry_states_side_and_turn(kb) -> None:
         "geometry.signalized_straight_on_green",
         "geometry.tjunction_main_straight_pullout",
         "geometry.junction_straight_exit_crossing",
+        # A stopped ego is met from behind or by a turner; crossing traffic of either side
+        # has no one-sided variant yet.
+        "geometry.stopped_at_red_light",
     }
 
 
@@ -302,3 +305,44 @@ def test_an_adversary_the_text_says_is_stalled_gets_a_behavior_that_stays_put(
     result = retrieve(spec, kb, bm25, MAPS)
     [behavior] = result.chosen[Component.BEHAVIOR]
     assert set(behavior.tags) & STATIONARY_TAGS, behavior.id
+
+
+@pytest.mark.parametrize(
+    ("road", "position", "turn", "geometry_id"),
+    [
+        (
+            "intersection",
+            RelativePosition.BEHIND_SAME_LANE,
+            "unstated",
+            "geometry.stopped_at_red_light",
+        ),
+        (
+            "intersection",
+            RelativePosition.ONCOMING,
+            "turn_left",
+            "geometry.stopped_at_red_light_oncoming_left_turner",
+        ),
+        (
+            "straight_road",
+            RelativePosition.BEHIND_SAME_LANE,
+            "unstated",
+            "geometry.stopped_in_traffic",
+        ),
+    ],
+)
+def test_a_stopped_ego_gets_a_geometry_that_holds_it_still(
+    kb, bm25, road: str, position: RelativePosition, turn: str, geometry_id: str
+) -> None:
+    spec = make_spec(position, turn, road).model_copy(update={"ego_stopped": True})
+    result = retrieve(spec, kb, bm25, MAPS)
+    assert result.chosen[Component.GEOMETRY][0].id == geometry_id
+    for other in result.candidates[Component.GEOMETRY]:
+        assert "ego_stopped" in other.tags, other.id
+
+
+@pytest.mark.parametrize("road", ["intersection", "straight_road", "t_junction", "highway"])
+def test_a_moving_ego_never_gets_a_stopped_geometry(kb, bm25, road: str) -> None:
+    for position in (RelativePosition.BEHIND_SAME_LANE, RelativePosition.ONCOMING):
+        result = retrieve(make_spec(position, road=road), kb, bm25, MAPS)
+        for other in result.candidates[Component.GEOMETRY]:
+            assert "ego_stopped" not in other.tags, other.id

@@ -112,3 +112,59 @@ def test_the_adversary_starts_on_the_stated_side_and_goes_the_stated_way(
         else:
             assert relation.ahead > 0, where
         assert adversary_turn(adversary) is AdversaryManeuver(turn), where
+
+
+STOPPED_CASES = [
+    ("intersection", RelativePosition.BEHIND_SAME_LANE, "unstated", "Car"),
+    ("intersection", RelativePosition.ONCOMING, "turn_left", "Bus"),
+    ("straight_road", RelativePosition.BEHIND_SAME_LANE, "unstated", "Car"),
+]
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize(("road", "position", "turn", "cls"), STOPPED_CASES)
+def test_a_stopped_ego_never_moves_and_is_still_met(
+    kb: KnowledgeBase,
+    maps: dict[str, frozenset[str]],
+    validator_pool: WorkerPool,
+    road: str,
+    position: RelativePosition,
+    turn: str,
+    cls: str,
+) -> None:
+    spec = ScenarioSpec(
+        adversary_type="truck" if cls == "Bus" else "car",
+        adversary_class=cls,
+        behavior="comes at the waiting ego",
+        road_type=road,
+        ego_maneuver="go_straight",
+        ego_stopped=True,
+        geometry="the ego waits",
+        spawn_position=position,
+        spawn="another vehicle approaches",
+        adversary_maneuver=turn,
+    )
+    retrieval = retrieve(spec, kb, BM25Retriever(kb), maps)
+    chosen = [e.id for e in retrieval.chosen_entries()]
+    draft = assemble(retrieval, cls, "stopped ego", params={})
+    for seed in SEEDS:
+        result = check_text(draft.script, CheckOptions(seed=seed, timeout=60), pool=validator_pool)
+        assert result.ok and result.simulation is not None, (chosen, result.diagnostic)
+        agents = result.simulation.agents
+        ego_trace = next(a for a in agents if a.is_ego)
+        assert travel_heading(ego_trace) is None, (chosen, seed, "the ego moved")
+        adversary = find_adversary(agents)
+        assert adversary is not None and travel_heading(adversary) is not None, chosen
+        relation = start_relation(ego_trace, adversary)
+        assert relation is not None, chosen
+        where = (chosen, seed, relation.describe())
+        if position is RelativePosition.BEHIND_SAME_LANE:
+            assert relation.ahead < 0 and relation.direction == "same", where
+        else:
+            assert relation.ahead > 0 and relation.direction == "opposite", where
+            assert adversary_turn(adversary) is AdversaryManeuver.TURN_LEFT, where
+        closest = min(
+            math.hypot(a.x - b.x, a.y - b.y)
+            for a, b in zip(ego_trace.trajectory, adversary.trajectory, strict=False)
+        )
+        assert closest < 12, (where, closest)

@@ -12,11 +12,13 @@ from PIL import Image
 
 from arise.present.errors import ScriptDidNotRun
 from arise.present.outputs import write_run_files
-from arise.present.source import Origin, TraceSource, load_trace
+from arise.present.source import Origin, TraceSource, from_check, load_trace
 from arise.present.verify import asam_check, read_back, worst_gap, xsd_errors
 from arise.present.xosc import EgoMode, write_export
 from arise.validate import CheckOptions, WorkerPool, check
+from arise.validate.types import Stage
 from tests.conftest import EXAMPLES
+from tests.fakes import failed
 
 pytestmark = pytest.mark.slow
 
@@ -117,3 +119,21 @@ def test_export_on_a_carla_town(
     _verify_export(source, files.export.xosc)
     assert files.export.xodr is not None
     assert files.export.xodr.read_bytes() == (carla_maps / f"{source.map.name}.xodr").read_bytes()
+
+
+def test_a_script_the_semantic_gate_faulted_still_gets_its_replay(
+    validator_pool: WorkerPool, tmp_path: Path
+) -> None:
+    script = EXAMPLES / "pedestrian_crossing.scenic"
+    options = CheckOptions(seed=1, steps=60)
+    ran = check(script, options, pool=validator_pool)
+    assert ran.ok and ran.simulation is not None
+    faulted = ran.model_copy(
+        update={"ok": False, "diagnostic": failed(Stage.SEMANTIC, "ConformityMismatch").diagnostic}
+    )
+    source = from_check(script, faulted, options)
+    files = write_run_files(source, tmp_path)
+    assert files.replay.gif.is_file() and files.export.xosc.is_file()
+    crashed = ran.model_copy(update={"ok": False, "diagnostic": failed().diagnostic})
+    with pytest.raises(ScriptDidNotRun, match="did not run in the validator: simulate"):
+        from_check(script, crashed, options)

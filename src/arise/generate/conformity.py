@@ -42,6 +42,7 @@ GATED_CHECKS = {
     "adversary_type": "SPAWN",
     "spawn_position": "SPAWN",
     "ego_maneuver": "GEOMETRY",
+    "ego_stopped": "GEOMETRY",
     "road_type": "GEOMETRY",
     "reaches_ego_path": "BEHAVIOR",
     "participants": "MISC",
@@ -319,7 +320,10 @@ def check_conformity(
                 adversary is not None and adversary.kind == expected_class,
             )
         )
-    if ego is not None:
+    if ego is not None and spec.ego_stopped:
+        moved = travel_heading(ego) is not None
+        add(ConformityCheck("ego_stopped", "stopped", "moved" if moved else "stopped", not moved))
+    elif ego is not None:
         maneuver = ego_maneuver(ego)
         add(
             ConformityCheck(
@@ -329,6 +333,7 @@ def check_conformity(
                 None if maneuver is None else maneuver is spec.ego_maneuver,
             )
         )
+    if ego is not None:
         add(_road_check(spec.road_type, ego, adversary, map_features))
     if ego is not None and adversary is not None:
         relation = start_relation(ego, adversary)

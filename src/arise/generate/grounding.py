@@ -278,6 +278,7 @@ def ground(description: str, answer: ExtractionAnswer) -> Grounded:
         spawn=free_text["spawn"],
         adversary_maneuver=AdversaryManeuver(facts["adversary_maneuver"].value),
         adversary_stationary="adversary_stationary" in facts,
+        ego_stopped="ego_stopped" in facts,
         no_adversary=no_adversary,
         participants=participants,
         actors=read_actors(reading),

@@ -52,7 +52,9 @@ SAMPLE_ITERATIONS = 250
 #: Gated checks about one fact of the spec: the gate holds a script to that fact only when
 #: the description states it (a model's guess or an unstated maneuver is no contradiction;
 #: the neutral weather is, since weather nobody asked for is a fault).
-GROUNDED_CHECKS = frozenset({"adversary_type", "spawn_position", "ego_maneuver", "road_type"})
+GROUNDED_CHECKS = frozenset(
+    {"adversary_type", "spawn_position", "ego_maneuver", "ego_stopped", "road_type"}
+)
 
 
 class ReconfigureError(AriseError):

@@ -66,7 +66,8 @@ _POSITION_CUES: tuple[tuple[RelativePosition, str], ...] = (
     (
         RelativePosition.BEHIND_SAME_LANE,
         r"from behind|behind the (?:ego|av)|behind it\b|"
-        r"following the (?:ego|av)|approaching from the rear|rear[- ]end\w*",
+        r"following the (?:ego|av)|approaching from the rear|rear[- ]end\w*|"
+        r"(?:a|an|the) following \w+",
     ),
     (
         RelativePosition.AHEAD_SAME_LANE,
@@ -132,12 +133,26 @@ def words_of(cast: Cast, mention: Mention) -> list[tuple[int, int]]:
     stretches = []
     starts = sorted(phrase_start(text, s.start) for m in cast.others for s in m.spans)
     for span in mention.spans:
-        lead = phrase_start(text, span.start)
+        lead = _passive_verb_start(text, phrase_start(text, span.start))
         end = next((s for s in starts if s > span.end), len(text))
         found = re.search(r"[.;!?](?:\s|$)", text[span.end :])
         sentence_end = span.end + found.start() if found else len(text)
         stretches.append((lead, min(end, sentence_end)))
     return stretches
+
+
+# "(is) struck from behind by a car": the passive verb before "by" says what the agent did.
+_PASSIVE_AGENT = re.compile(
+    r"\b(?:is|was|are|were|gets?|got|being|been)\s+([\w'-]+(?:\s+[\w'-]+){0,4}?)\s+by\s+$",
+    re.I,
+)
+
+
+def _passive_verb_start(text: str, lead: int) -> int:
+    """Where the words about a passive agent begin: at its verb when the phrase follows
+    "is <verb> ... by" in the same clause, else at the phrase itself."""
+    found = _PASSIVE_AGENT.search(text[max(0, lead - 60) : lead])
+    return max(0, lead - 60) + found.start(1) if found else lead
 
 
 def read_position(cast: Cast, mention: Mention) -> GroundedFact | None:
@@ -306,6 +321,26 @@ MOVING = re.compile(
 )
 
 
+# The ego held still for the scene ("stopped at a red light", "waits at the lights",
+# "stopped in traffic"); stopping in reaction ("the ego stops short") is not this.
+_EGO_HELD = re.compile(
+    r"\b(?:stopped|waits|waiting|sitting|sits|idling|halted|queued|queuing|stands|standing)"
+    r"\s+(?:at|in|behind)\s+(?:(?:a|an|the)\b|traffic\b)|"
+    r"\b(?:is|was|sits|sat|remains|remained|stands|stood)\s+(?:stationary|at a standstill)\b",
+    re.I,
+)
+
+
+def read_ego_stopped(reading: Reading) -> None:
+    """Whether the ego stands still for the whole scene, from words whose subject it is."""
+    for match in _EGO_HELD.finditer(reading.cast.text):
+        if _subject(reading.cast, match.start()) == "ego":
+            reading.facts["ego_stopped"] = GroundedFact(
+                name="ego_stopped", value="true", source=FactSource.TEXT, quote=match.group(0)
+            )
+            return
+
+
 def read_stationary(cast: Cast, mention: Mention) -> GroundedFact | None:
     """Whether the words about `mention` say it stays put for the whole scene ("a truck
     parked in its lane", "a stalled car"), and move it nowhere ("a parked car pulls out")."""
@@ -389,4 +424,5 @@ def read_description(description: str, adversary_quote: str | None = None) -> Re
         if stationary is not None:
             reading.facts["adversary_stationary"] = stationary
     read_maneuvers(reading)
+    read_ego_stopped(reading)
     return reading

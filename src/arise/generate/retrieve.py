@@ -42,6 +42,8 @@ ROAD_FEATURES: dict[RoadType, tuple[str, ...]] = {
     RoadType.HIGHWAY: ("highway",),
 }
 JUNCTION_FEATURES = {"intersection4", "tjunction"}
+#: A geometry whose ego stands still for the whole scene; only a stopped ego gets one.
+EGO_STOPPED_TAG = "ego_stopped"
 MANEUVER_TAGS: dict[EgoManeuver, tuple[str, ...]] = {
     EgoManeuver.TURN_LEFT: ("left_turn", "unprotected_left_turn"),
     EgoManeuver.TURN_RIGHT: ("right_turn",),
@@ -95,6 +97,8 @@ SIDE_APPROACHES: dict[RelativePosition, tuple[frozenset[Approach], frozenset[App
 MAX_MISC = 3
 #: Behavior tags of an adversary that does not move (stalled, parked as a hazard).
 STATIONARY_TAGS = frozenset({"static", "stalled"})
+#: A behavior that stands still until the ego comes near (`while (distance from ego to X) >`).
+WAITS_FOR_EGO = re.compile(r"while \(distance from (?:ego to \w+|self to ego)\) >")
 #: Components whose candidate lists are pools to drop from, not ranked fall-backs.
 POOLED = (Component.MISC, Component.REQUIREMENTS)
 
@@ -266,7 +270,13 @@ def _geometry_pool(
             return not tags & turns
         return bool(tags & set(MANEUVER_TAGS[spec.ego_maneuver]))
 
-    placeable_entries = [e for e in entries if placeable(e)]
+    def stop_fits(entry: Entry) -> bool:
+        return (EGO_STOPPED_TAG in entry.tags) == spec.ego_stopped
+
+    placeable_entries = [e for e in entries if placeable(e) and stop_fits(e)]
+    if not placeable_entries and spec.ego_stopped:
+        notes.append("no geometry entry keeps the ego stopped here; it drives")
+        placeable_entries = [e for e in entries if placeable(e) and not stop_fits(e)]
     for fits, note in (
         (lambda e: road_fits(e) and maneuver_fits(e), None),
         (
@@ -312,6 +322,9 @@ def _first_core(
             both = defined | set(spawn.defines)
             route = pair_maneuver(geometry, spawn)
             usable = [b for b in behaviors if set(b.needs) <= both and turn_agrees(spec, b, route)]
+            if route in (AdversaryManeuver.TURN_LEFT, AdversaryManeuver.TURN_RIGHT):
+                # A route that turns is only driven by a behavior that follows it.
+                usable = [b for b in usable if "advRoute" in b.needs] or usable
             if usable and fits_a_map([geometry, spawn, usable[0]]):
                 return _Core(geometry, spawn, usable, fit)
     return None
@@ -384,6 +397,10 @@ def retrieve(
         Component.BEHAVIOR,
         [e for e in kb.of(Component.BEHAVIOR) if e.suits(adversary)],
     )
+    if spec.ego_stopped:
+        # An ego that never moves never comes near: a behavior that waits for it would too.
+        moving = [e for e in behaviors if not WAITS_FOR_EGO.search(e.snippet)]
+        behaviors = moving or behaviors
     pools = [behaviors]
     if spec.adversary_stationary:
         # Parked, stalled or stopped in the text: a behavior that stays put, if one fits.

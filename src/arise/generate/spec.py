@@ -122,6 +122,10 @@ class ScenarioSpec(BaseModel):
     adversary_stationary: bool = Field(
         default=False, description="the text says the adversary is parked, stalled or stopped"
     )
+    ego_stopped: bool = Field(
+        default=False,
+        description="the text says the ego stands still (at a red light, in traffic)",
+    )
     participants: list[str] = Field(
         default_factory=list, description="other road users and objects, one per item"
     )

@@ -105,13 +105,16 @@ class _Planner:
                         if spawn.suits(adversary) and behavior.suits(adversary):
                             yield (behavior, geometry, spawn), adversary
 
-    def add_core(self, target: Entry) -> Composition | None:
+    def add_core(self, target: Entry, carrying: Entry | None = None) -> Composition | None:
+        """A new script around `target`: the best-scoring core that composes on a map (with
+        `carrying` too, when given, so that an entry opening a script can ride on it)."""
         best = None
         for core, adversary in self._cores_with(target):
             score = self._score(target, core, adversary)
             if best is not None and score <= best[0]:
                 continue
-            map_name = _fits(core, adversary, self.maps)
+            on_map = core if carrying is None else [*core, carrying]
+            map_name = _fits(on_map, adversary, self.maps)
             if map_name is not None:
                 best = (score, list(core), adversary, map_name)
         if best is None:
@@ -201,7 +204,7 @@ def plan_validation(
                 if planner_entry.id in entry.companions and planner_entry.id in core_ids
             ]
             for behavior in seeds or planner.by_component[Component.BEHAVIOR]:
-                composition = planner.add_core(behavior)
+                composition = planner.add_core(behavior, carrying=entry)
                 if composition is None:
                     continue
                 if planner.attach(entry):

@@ -18,7 +18,7 @@ from arise.maps.registry import MapError, MapRegistry
 from arise.present.errors import RunNotExecuted, RunNotFound, ScriptDidNotRun
 from arise.present.tracefile import SavedTrace, read_trace, script_digest
 from arise.validate import CheckOptions, WorkerPool, check
-from arise.validate.types import CheckResult, MapChoice, SimulationFacts
+from arise.validate.types import CheckResult, MapChoice, SimulationFacts, Stage
 
 RUN_SCRIPT = "scenario.scenic"
 RUN_REPORT = "report.json"
@@ -113,8 +113,10 @@ def run_check_options(report: dict[str, Any], map_dir: str | None) -> CheckOptio
 def from_check(
     script: Path, result: CheckResult, options: CheckOptions, notes: list[str] | None = None
 ) -> TraceSource:
-    """The trace of a check that ran (raises ScriptDidNotRun for one that did not)."""
-    if not result.ok or result.simulation is None:
+    """The trace of a check that ran (raises ScriptDidNotRun for one that did not). A script
+    the semantic gate faulted still ran: its trace is what a user wants to see."""
+    faulted_but_ran = result.diagnostic is not None and result.diagnostic.stage is Stage.SEMANTIC
+    if (not result.ok and not faulted_but_ran) or result.simulation is None:
         reason = result.diagnostic.one_line() if result.diagnostic else "no simulation"
         raise ScriptDidNotRun(f"{script} did not run in the validator: {reason}")
     if result.simulation.agents and not any(a.trajectory for a in result.simulation.agents):
