@@ -571,3 +571,17 @@ def test_real_scripts_score_against_hand_written_truth(tmp_path: Path, validator
     assert score_fidelity(turning, result, features).score == 1.0
     told_straight = score_fidelity(Truth.from_dict({"ego_maneuver": "straight"}), result, features)
     assert told_straight.verdict("ego_maneuver").match is False
+
+
+@pytest.mark.parametrize(
+    ("distance", "gap", "match"),
+    [(0.5, 2.0, True), (0.5, 12.0, False), (40, 2.0, False), (0.5, None, False)],
+)
+def test_a_stopped_ego_at_the_stop_line_is_at_the_intersection(
+    distance: float, gap: float | None, match: bool
+) -> None:
+    ego = agent("ego", "Car", straight(0, 0, 0, distance, NORTH), ego=True).model_copy(
+        update={"junction_gap": gap}
+    )
+    fidelity = score_fidelity(truth(road="intersection"), ran(ego), {"intersection4"})
+    assert fidelity.verdict("road").match is match

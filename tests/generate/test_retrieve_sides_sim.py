@@ -12,7 +12,13 @@ import math
 import pytest
 
 from arise.generate.assemble import assemble
-from arise.generate.conformity import find_adversary, start_relation, travel_heading, wrap
+from arise.generate.conformity import (
+    at_junction,
+    find_adversary,
+    start_relation,
+    travel_heading,
+    wrap,
+)
 from arise.generate.retrieve import retrieve
 from arise.generate.spec import ScenarioSpec
 from arise.kb.loader import KnowledgeBase, load_kb
@@ -153,6 +159,7 @@ def test_a_stopped_ego_never_moves_and_is_still_met(
         agents = result.simulation.agents
         ego_trace = next(a for a in agents if a.is_ego)
         assert travel_heading(ego_trace) is None, (chosen, seed, "the ego moved")
+        assert at_junction(ego_trace) is (road == "intersection"), (chosen, ego_trace.junction_gap)
         adversary = find_adversary(agents)
         assert adversary is not None and travel_heading(adversary) is not None, chosen
         relation = start_relation(ego_trace, adversary)

@@ -33,6 +33,7 @@ from arise.generate.conformity import (
     LANE_HALF,
     NEXT_LANE,
     TURN_DEGREES,
+    at_junction,
     ego_maneuver,
     frame,
     start_relation,
@@ -780,7 +781,8 @@ def _road_verdict(
     observed = f"ego {ego.intersection_steps} junction steps, others {others_steps}"
     if features is not None:
         observed += f"; map: {', '.join(sorted(features)) or 'no features'}"
-    in_junction = ego.intersection_steps + others_steps > 0
+    # A stopped ego at the stop line is at the junction without entering it.
+    in_junction = ego.intersection_steps + others_steps > 0 or at_junction(ego)
     match: bool | None
     if road is None:
         match = None

@@ -34,6 +34,7 @@ NEXT_LANE = 5.6  # up to this is the adjacent lane
 TURN_DEGREES = 45.0
 LANE_CHANGE_METRES = 2.2
 MOVED_METRES = 1.5
+AT_JUNCTION_METRES = 5.0  # a stopped ego this close to a junction waits at it
 REACH_MARGIN = 1.0  # metres beyond the two half-widths that still count as "in the path"
 # A roadside adversary (a parked car, a bystander) may do its part without entering the path.
 ROADSIDE = frozenset({RelativePosition.ROADSIDE_LEFT, RelativePosition.ROADSIDE_RIGHT})
@@ -162,6 +163,15 @@ def frame(origin: TracePoint, x: float, y: float) -> tuple[float, float]:
     forward = (-math.sin(origin.heading), math.cos(origin.heading))
     left = (-math.cos(origin.heading), -math.sin(origin.heading))
     return dx * forward[0] + dy * forward[1], dx * left[0] + dy * left[1]
+
+
+def at_junction(ego: AgentTrace) -> bool:
+    """An ego that never moves and starts at a junction's edge (a stop line) is at it."""
+    return (
+        ego.junction_gap is not None
+        and ego.junction_gap <= AT_JUNCTION_METRES
+        and travel_heading(ego) is None
+    )
 
 
 def travel_heading(trace: AgentTrace) -> float | None:
@@ -448,9 +458,15 @@ def _road_check(
     road: RoadType, ego: AgentTrace, adversary: AgentTrace | None, map_features: frozenset[str]
 ) -> ConformityCheck:
     junction_steps = ego.intersection_steps + (adversary.intersection_steps if adversary else 0)
-    observed = "through a junction" if junction_steps else "no junction"
+    observed = (
+        "through a junction"
+        if junction_steps
+        else ("waits at a junction" if at_junction(ego) else "no junction")
+    )
     if road in (RoadType.INTERSECTION, RoadType.T_JUNCTION):
-        return ConformityCheck("road_type", road.value, observed, junction_steps > 0)
+        return ConformityCheck(
+            "road_type", road.value, observed, junction_steps > 0 or at_junction(ego)
+        )
     if road is RoadType.HIGHWAY and map_features:
         on_highway = "highway" in map_features
         return ConformityCheck(

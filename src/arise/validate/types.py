@@ -133,6 +133,8 @@ class AgentTrace(BaseModel):
     behavior: str | None = None
     # Steps at which the agent was inside a junction of the map.
     intersection_steps: int = 0
+    # Metres from its first position to the nearest junction (None: no road network).
+    junction_gap: float | None = None
     # Moves into a neighbouring lane of the same road (None: no road network to tell).
     lane_changes: int | None = None
     trajectory: list[TracePoint] = Field(default_factory=list)

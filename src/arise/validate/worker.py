@@ -239,6 +239,7 @@ def _agent_traces(simulation: Any) -> list[AgentTrace]:
                 is_ego=is_ego,
                 behavior=type(behavior).__name__ if behavior is not None else None,
                 intersection_steps=_steps_in_junctions(simulation, points),
+                junction_gap=_junction_gap(simulation, points),
                 lane_changes=_lane_changes(simulation, points),
                 trajectory=points,
             )
@@ -259,6 +260,18 @@ def _steps_in_junctions(simulation: Any, points: list[TracePoint]) -> int:
         return sum(bool(region.containsPoint((p.x, p.y))) for p in points)
     except Exception:  # an odd region must not cost the facts of a run that worked
         return 0
+
+
+def _junction_gap(simulation: Any, points: list[TracePoint]) -> float | None:
+    """Metres from the first point to the nearest junction: a car waiting at the stop line
+    is at the junction without ever entering it."""
+    region = getattr(_network(simulation), "intersectionRegion", None)
+    if region is None or not points:
+        return None
+    try:
+        return round(float(region.distanceTo((points[0].x, points[0].y))), 2)
+    except Exception:  # an odd region must not cost the facts of a run that worked
+        return None
 
 
 def _lane_changes(simulation: Any, points: list[TracePoint]) -> int | None:
