@@ -19,6 +19,7 @@ from arise.generate.conformity import (
     travel_heading,
     wrap,
 )
+from arise.evaluate.fidelity import Direction, placement
 from arise.generate.retrieve import retrieve
 from arise.generate.spec import ScenarioSpec
 from arise.kb.loader import KnowledgeBase, load_kb
@@ -175,3 +176,32 @@ def test_a_stopped_ego_never_moves_and_is_still_met(
             for a, b in zip(ego_trace.trajectory, adversary.trajectory, strict=False)
         )
         assert closest < 12, (where, closest)
+
+
+@pytest.mark.slow
+def test_an_oncoming_drifter_stays_oncoming_until_the_scene_ends(
+    kb: KnowledgeBase, maps: dict[str, frozenset[str]], validator_pool: WorkerPool
+) -> None:
+    spec = ScenarioSpec(
+        adversary_type="car",
+        behavior="drifting over the centre line into its lane",
+        road_type="straight_road",
+        ego_maneuver="go_straight",
+        geometry="a two-way road",
+        spawn_position=RelativePosition.ONCOMING,
+        spawn="an oncoming car",
+    )
+    retrieval = retrieve(spec, kb, BM25Retriever(kb), maps)
+    chosen = [e.id for e in retrieval.chosen_entries()]
+    assert "behavior.oncoming_drift_into_lane" in chosen
+    draft = assemble(retrieval, "Car", "oncoming drift", params={})
+    for seed in SEEDS:
+        result = check_text(draft.script, CheckOptions(seed=seed, timeout=60), pool=validator_pool)
+        assert result.ok and result.simulation is not None, (chosen, result.diagnostic)
+        agents = result.simulation.agents
+        ego_trace = next(a for a in agents if a.is_ego)
+        adversary = find_adversary(agents)
+        assert adversary is not None
+        where = placement(ego_trace, adversary)
+        assert where is not None and where.direction is Direction.OPPOSITE, (seed, where)
+        assert result.simulation.steps < 200, "the scene ends once the car is well past"
