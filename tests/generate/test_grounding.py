@@ -127,6 +127,12 @@ def test_weather_comes_from_weather_words_only(text: str, preset: str, source: F
         ("The ego waits at a light when a following van fails to stop.", "behind_same_lane"),
         ("The ego is cut off from the right by a taxi.", "crossing_road_from_right"),
         (
+            "In heavy rain, the AV was following a white van northbound. The van stopped "
+            "suddenly to let a pedestrian cross.",
+            "ahead_same_lane",
+        ),
+        ("The AV was travelling east at 18 mph behind a box truck.", "ahead_same_lane"),
+        (
             "The ego moves into the right lane where a scooter is riding in that lane.",
             "adjacent_lane_right",
         ),

@@ -155,8 +155,33 @@ def _passive_verb_start(text: str, lead: int) -> int:
     return max(0, lead - 60) + found.start(1) if found else lead
 
 
+# "the AV was following a van", "travelling ... behind a box truck": the ego's own verb
+# puts the object ahead of it in its lane.
+_EGO_BEHIND_IT = re.compile(
+    r"\b(?:following|follows|followed|trailing|behind)\s+$",
+    re.I,
+)
+
+
+def _ego_follows(cast: Cast, mention: Mention) -> GroundedFact | None:
+    for span in mention.spans:
+        lead = phrase_start(cast.text, span.start)
+        found = _EGO_BEHIND_IT.search(cast.text[max(0, lead - 20) : lead])
+        if found and _subject(cast, max(0, lead - 20) + found.start()) == "ego":
+            return GroundedFact(
+                name="spawn_position",
+                value=RelativePosition.AHEAD_SAME_LANE.value,
+                source=FactSource.TEXT,
+                quote=f"{found.group(0)}{cast.text[lead : span.end]}",
+            )
+    return None
+
+
 def read_position(cast: Cast, mention: Mention) -> GroundedFact | None:
     """Where `mention` starts, seen from the ego, from the words about it."""
+    followed = _ego_follows(cast, mention)
+    if followed is not None:
+        return followed
     best: tuple[int, int, RelativePosition, str] | None = None
     for start, end in words_of(cast, mention):
         words = cast.text[start:end]
