@@ -20,6 +20,7 @@ from arise.serve.config import (
     ServeConfig,
     default_runs_dir,
 )
+from arise.serve.errors import ServeError
 
 console = Console(soft_wrap=True)
 
@@ -81,9 +82,15 @@ def serve_command(
         MAX_QUEUED
     ),
 ) -> None:
-    import uvicorn
+    try:
+        import uvicorn
 
-    from arise.serve.app import create_app, guarded
+        from arise.serve.app import create_app, guarded
+    except ImportError as error:
+        raise ServeError(
+            f"arise serve needs the web packages ({error.name} is missing): "
+            "pip install 'arise[serve]' (make serve and make demo install them)"
+        ) from None
 
     if new_token and not token:
         token = secrets.token_urlsafe(24)
