@@ -117,10 +117,13 @@ class Lane:
                     return
                 job = self._queue.popleft()
                 self.current = job
+            ending: tuple[JobState, str | None] | None = None
             try:
-                self._run(job)
+                ending = self._run(job)
             finally:
-                self.current = None
+                self.current = None  # before the job's end is told: the queue is free
+                if ending is not None:
+                    self._moved(job, *ending)
 
     def _moved(self, job: Job, state: JobState, message: str | None = None) -> bool:
         event = job.move(state, message)
@@ -128,12 +131,12 @@ class Lane:
             self._on_change(job, event)
         return event is not None
 
-    def _run(self, job: Job) -> None:
+    def _run(self, job: Job) -> tuple[JobState, str | None] | None:
+        """Run one job; how it ended (None: it had ended before it could start)."""
         if job.cancel_requested.is_set():
-            self._moved(job, JobState.CANCELLED, "cancelled before it started")
-            return
+            return JobState.CANCELLED, "cancelled before it started"
         if not self._moved(job, JobState.RUNNING):
-            return
+            return None
 
         def progress(event: ProgressEvent) -> None:
             if job.cancel_requested.is_set() and not isinstance(event, RunFinished):
@@ -147,17 +150,14 @@ class Lane:
                 self._runner = self._make_runner()
             run = self._runner.generate(job.description, self._folder_of(job), progress)
         except JobCancelled:
-            state, message = JobState.CANCELLED, "cancelled while running"
+            return JobState.CANCELLED, "cancelled while running"
         except AriseError as error:  # e.g. a knowledge base or map folder that cannot load
-            state, message = JobState.FAILED, str(error)
+            return JobState.FAILED, str(error)
         except Exception as error:  # noqa: BLE001  (a bug: the page gets one line, the log the rest)
             log.exception("job %s failed", job.id)
-            state, message = (
+            return (
                 JobState.FAILED,
                 f"internal error ({type(error).__name__}); the server's log has the details",
             )
-        else:
-            job.run_status = run.status.value
-            state = JobState.DONE if run.ok else JobState.FAILED
-            message = run.summary()
-        self._moved(job, state, message)
+        job.run_status = run.status.value
+        return (JobState.DONE if run.ok else JobState.FAILED), run.summary()
