@@ -179,13 +179,21 @@ def test_unusable_requests_are_422_with_one_line_and_no_job(
     assert client.get("/api/jobs").json()["jobs"] == []
 
 
-def test_jobs_for_one_model_queue_and_run_one_at_a_time(
+def running_and_waiting(
     make_client: MakeClient, runner: ScriptedRunner
-) -> None:
+) -> tuple[TestClient, dict, dict]:
+    """Two jobs for one model: the first held at its first stage, the second waiting."""
     runner.hold = True
     client = make_client()
     first, second = submit(client), submit(client)
     assert runner.started.wait(5)
+    return client, first, second
+
+
+def test_jobs_for_one_model_queue_and_run_one_at_a_time(
+    make_client: MakeClient, runner: ScriptedRunner
+) -> None:
+    client, first, second = running_and_waiting(make_client, runner)
     assert wait_state(client, first["id"], "running")["position"] is None
     waiting = client.get(f"/api/jobs/{second['id']}").json()
     assert waiting["state"] == "queued" and waiting["position"] == 1
@@ -203,10 +211,7 @@ def test_jobs_for_one_model_queue_and_run_one_at_a_time(
 def test_cancel_a_queued_job_and_a_running_one(
     make_client: MakeClient, runner: ScriptedRunner
 ) -> None:
-    runner.hold = True
-    client = make_client()
-    first, second = submit(client), submit(client)
-    assert runner.started.wait(5)
+    client, first, second = running_and_waiting(make_client, runner)
     cancelled = client.post(f"/api/jobs/{second['id']}/cancel").json()
     assert (
         cancelled["state"] == "cancelled" and cancelled["message"] == "cancelled before it started"
