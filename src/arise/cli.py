@@ -33,6 +33,7 @@ from arise.kb.cli import app as kb_app
 from arise.llm.cli import app as llm_app
 from arise.paths import cache_dir
 from arise.present.cli import EXPORT_HELP, REPLAY_HELP, export_command, replay_command
+from arise.serve.cli import SERVE_HELP, serve_command
 from arise.validate.cli import CHECK_HELP, blueprints_command, check_command, maps_app
 
 #: Exit code of a crash (a bug in arise), as BSD's EX_SOFTWARE.
@@ -108,6 +109,7 @@ app.command("report", help=REPORT_HELP)(report_command)
 app.command("judge", help=JUDGE_HELP)(judge_command)
 app.command("replay", help=REPLAY_HELP)(replay_command)
 app.command("export", help=EXPORT_HELP)(export_command)
+app.command("serve", help=SERVE_HELP)(serve_command)
 app.command("blueprints")(blueprints_command)
 app.command("doctor", help=DOCTOR_HELP)(doctor_command)
 app.add_typer(maps_app, name="maps")

@@ -1,0 +1,149 @@
+"""A job: one description on its way through one model, and who is waiting to hear of it.
+
+The job's state changes only through its methods, under its lock; each change and each
+progress event is kept (`events`) and wakes every page that follows the job (`Signal`).
+"""
+
+from __future__ import annotations
+
+import asyncio
+import threading
+import time
+from dataclasses import dataclass, field
+from enum import StrEnum
+from typing import Any
+
+
+class JobState(StrEnum):
+    QUEUED = "queued"
+    RUNNING = "running"
+    DONE = "done"  # the run ended with a script that executed
+    FAILED = "failed"  # the run ended without one (its message says why)
+    CANCELLED = "cancelled"
+
+
+FINISHED = frozenset({JobState.DONE, JobState.FAILED, JobState.CANCELLED})
+
+
+class Signal:
+    """Wakes coroutines in any event loop from any thread: `notify()` from the job's
+    thread, `await wait(version)` in the server's loop. The version counts notifications,
+    so a waiter that read it before looking at the job misses none."""
+
+    def __init__(self) -> None:
+        self._lock = threading.Lock()
+        self._waiters: set[tuple[asyncio.AbstractEventLoop, asyncio.Event]] = set()
+        self.version = 0
+
+    def notify(self) -> None:
+        with self._lock:
+            self.version += 1
+            waiters = list(self._waiters)
+        for loop, event in waiters:
+            try:
+                loop.call_soon_threadsafe(event.set)
+            except RuntimeError:  # that loop is closed: its waiter is gone
+                with self._lock:
+                    self._waiters.discard((loop, event))
+
+    async def wait(self, since: int, timeout: float) -> None:
+        """Return when the version is past `since`, or after `timeout` seconds."""
+        entry = (asyncio.get_running_loop(), asyncio.Event())
+        with self._lock:
+            if self.version != since:
+                return
+            self._waiters.add(entry)
+        try:
+            await asyncio.wait_for(entry[1].wait(), timeout)
+        except TimeoutError:
+            pass
+        finally:
+            with self._lock:
+                self._waiters.discard(entry)
+
+
+@dataclass
+class Job:
+    """One generation request. `events` holds, in order, the pipeline's progress events
+    (`event_dict` form) and a `state` event at each change of state."""
+
+    id: str
+    description: str
+    provider: str
+    model: str
+    created: float = field(default_factory=time.time)
+    state: JobState = JobState.QUEUED
+    started: float | None = None
+    finished: float | None = None
+    message: str | None = None
+    run_status: str | None = None  # the run's RunStatus, once it ended
+    events: list[dict[str, Any]] = field(default_factory=list)
+    cancel_requested: threading.Event = field(default_factory=threading.Event, repr=False)
+    signal: Signal = field(default_factory=Signal, repr=False)
+    _lock: threading.Lock = field(default_factory=threading.Lock, repr=False)
+
+    @property
+    def key(self) -> str:
+        return f"{self.provider}/{self.model}"
+
+    @property
+    def finished_state(self) -> bool:
+        return self.state in FINISHED
+
+    def add_event(self, event: dict[str, Any]) -> None:
+        with self._lock:
+            self.events.append(event)
+        self.signal.notify()
+
+    def events_after(self, seen: int) -> list[dict[str, Any]]:
+        with self._lock:
+            return list(self.events[seen:])
+
+    def move(self, state: JobState, message: str | None = None) -> dict[str, Any] | None:
+        """The one way a job changes state: returns the `state` event it added, or None
+        (and nothing changes) once the job has finished."""
+        with self._lock:
+            if self.state in FINISHED:
+                return None
+            self.state = state
+            now = time.time()
+            if state is JobState.RUNNING:
+                self.started = now
+            if state in FINISHED:
+                self.finished = now
+            if message is not None:
+                self.message = message
+            event = {"event": "state", "state": state.value, "message": self.message}
+            self.events.append(event)
+        self.signal.notify()
+        return event
+
+    def as_dict(self) -> dict[str, Any]:
+        return {
+            "id": self.id,
+            "description": self.description,
+            "provider": self.provider,
+            "model": self.model,
+            "key": self.key,
+            "state": self.state.value,
+            "created": self.created,
+            "started": self.started,
+            "finished": self.finished,
+            "message": self.message,
+            "run_status": self.run_status,
+        }
+
+    @classmethod
+    def from_dict(cls, data: dict[str, Any]) -> Job:
+        return cls(
+            id=str(data["id"]),
+            description=str(data["description"]),
+            provider=str(data["provider"]),
+            model=str(data["model"]),
+            created=float(data.get("created") or 0.0),
+            state=JobState(data.get("state", JobState.FAILED)),
+            started=data.get("started"),
+            finished=data.get("finished"),
+            message=data.get("message"),
+            run_status=data.get("run_status"),
+        )
