@@ -335,3 +335,32 @@ def test_an_object_of_a_class_the_text_never_names_is_extra() -> None:
 def test_an_ego_held_still_is_read_from_words_about_the_ego(text: str, stopped: bool) -> None:
     reading = read_description(text)
     assert ("ego_stopped" in reading.facts) is stopped
+
+
+@pytest.mark.parametrize(
+    ("text", "position"),
+    [
+        (
+            "On June 11, 2026, the AV was travelling westbound on Marrow Lane at 20 mph through "
+            "its T-intersection with Larkmoor Avenue, which meets Marrow Lane from the north. "
+            "A car waiting at the stop sign on Larkmoor Avenue pulled out to turn left.",
+            "crossing_road_from_right",
+        ),
+        (
+            "The AV was stopped at a red light on Tamsin Street when a cyclist riding forward "
+            "between the AV and a car parked on the right hit the AV's right mirror.",
+            "adjacent_lane_right",
+        ),
+        (
+            "The AV was travelling in the rightmost northbound lane of the freeway at 50 mph "
+            "when a motorcycle entering from the on-ramp to its right merged into its lane "
+            "ahead of it and braked.",
+            "adjacent_lane_right",
+        ),
+    ],
+)
+def test_crash_report_sides_from_streets_squeezes_and_ramps(text: str, position: str) -> None:
+    reading = read_description(text)
+    fact = reading.facts["spawn_position"]
+    assert fact.value == position
+    assert fact.quote is not None and fact.quote in text

@@ -11,6 +11,7 @@ import math
 
 import pytest
 
+from arise.evaluate.fidelity import Direction, placement
 from arise.generate.assemble import assemble
 from arise.generate.conformity import (
     at_junction,
@@ -19,7 +20,6 @@ from arise.generate.conformity import (
     travel_heading,
     wrap,
 )
-from arise.evaluate.fidelity import Direction, placement
 from arise.generate.retrieve import retrieve
 from arise.generate.spec import ScenarioSpec
 from arise.kb.loader import KnowledgeBase, load_kb

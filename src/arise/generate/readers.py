@@ -36,7 +36,7 @@ _POSITION_CUES: tuple[tuple[RelativePosition, str], ...] = (
         rf"in {_SIDE}left lane|lane to {_SIDE}left|left[- ]hand lane|left adjacent lane|"
         r"adjacent left lane|overtak\w+ (?:the ego |the av |it )?on (?:its|the) left|"
         rf"(?:on|in|from) {_SIDE}left[- ]front|alongside on {_SIDE}left|on {_SIDE}left side of "
-        r"the (?:ego|av)",
+        rf"the (?:ego|av)|from (?:the |an? )?[\w-]+ (?:on|to) {_SIDE}left(?![- ]turn)",
     ),
     (
         RelativePosition.ADJACENT_LANE_RIGHT,
@@ -44,7 +44,8 @@ _POSITION_CUES: tuple[tuple[RelativePosition, str], ...] = (
         rf"in {_SIDE}right lane|lane to {_SIDE}right|right[- ]hand lane|right adjacent lane|"
         r"adjacent right lane|bike lane|overtak\w+ (?:the ego |the av |it )?on (?:its|the) right|"
         rf"(?:on|in|from) {_SIDE}right[- ]front|alongside on {_SIDE}right|on {_SIDE}right side "
-        r"of the (?:ego|av)",
+        r"of the (?:ego|av)|(?:from|off|via) (?:the |an? )?(?:on-?ramp|slip road|entry ramp)|"
+        rf"from (?:the |an? )?[\w-]+ (?:on|to) {_SIDE}right",
     ),
     (
         RelativePosition.ROADSIDE_LEFT,
@@ -163,6 +164,32 @@ _EGO_BEHIND_IT = re.compile(
 )
 
 
+# "riding between the AV and a car parked on the right": squeezed in on that side.
+_BETWEEN = re.compile(
+    r"^[^.;]{0,40}?\bbetween (?:the ego|the av|it) and (?:a|an|the) [^.;]{0,40}?"
+    r"\b(?:on|to) (?:the|its) (left|right)\b",
+    re.I,
+)
+
+
+def _squeezed_beside(cast: Cast, mention: Mention) -> GroundedFact | None:
+    for span in mention.spans:
+        found = _BETWEEN.search(cast.text[span.end :])
+        if found:
+            side = found.group(1).lower()
+            return GroundedFact(
+                name="spawn_position",
+                value=(
+                    RelativePosition.ADJACENT_LANE_LEFT
+                    if side == "left"
+                    else RelativePosition.ADJACENT_LANE_RIGHT
+                ).value,
+                source=FactSource.TEXT,
+                quote=cast.text[span.end + found.start() : span.end + found.end()].strip(),
+            )
+    return None
+
+
 def _ego_follows(cast: Cast, mention: Mention) -> GroundedFact | None:
     for span in mention.spans:
         lead = phrase_start(cast.text, span.start)
@@ -179,9 +206,9 @@ def _ego_follows(cast: Cast, mention: Mention) -> GroundedFact | None:
 
 def read_position(cast: Cast, mention: Mention) -> GroundedFact | None:
     """Where `mention` starts, seen from the ego, from the words about it."""
-    followed = _ego_follows(cast, mention)
-    if followed is not None:
-        return followed
+    told = _ego_follows(cast, mention) or _squeezed_beside(cast, mention)
+    if told is not None:
+        return told
     best: tuple[int, int, RelativePosition, str] | None = None
     for start, end in words_of(cast, mention):
         words = cast.text[start:end]
@@ -241,6 +268,26 @@ def _bearing(found: re.Match[str]) -> int:
     return _COMPASS[word.lower()]
 
 
+_STREET = r"[A-Z][a-z]+ (?:Avenue|Street|Road|Lane|Boulevard|Drive|Way|Place)"
+_FROM_COMPASS = {"north": "south", "south": "north", "east": "west", "west": "east"}
+
+
+def _side_road_bearing(text: str, words: str) -> tuple[int, str] | None:
+    """An actor "on Larkmoor Avenue", where the text says that street "meets ... from the
+    north", travels south: its bearing, and the words that say so."""
+    named = re.search(rf"\b(?:on|from|out of) ({_STREET})", words)
+    if not named:
+        return None
+    told = re.search(
+        rf"{re.escape(named.group(1))},? (?:which |that )?(?:meets|joins|enters|comes in|"
+        r"runs in|crosses)[^.;]{0,60}?\bfrom the (north|east|south|west)\b",
+        text,
+    )
+    if not told:
+        return None
+    return (_COMPASS[told.group(1).lower()] + 180) % 360, told.group(0)
+
+
 def read_compass(cast: Cast, mention: Mention) -> GroundedFact | None:
     """A side from compass words ("the AV was northbound; an eastbound car"), as crash
     reports give them: the ego's bearing from its own words, the actor's from its words."""
@@ -255,10 +302,13 @@ def read_compass(cast: Cast, mention: Mention) -> GroundedFact | None:
         return None
     for start, end in words_of(cast, mention):
         words = cast.text[max(0, start - 15) : end]
-        found = _BOUND.search(words)
-        if not found:
+        bound = _BOUND.search(words)
+        heading = (
+            (_bearing(bound), bound.group(0)) if bound else _side_road_bearing(cast.text, words)
+        )
+        if heading is None:
             continue
-        relative = (_bearing(found) - ego_bearing) % 360
+        relative = (heading[0] - ego_bearing) % 360
         position = {
             90: RelativePosition.CROSSING_FROM_LEFT,
             180: RelativePosition.ONCOMING,
@@ -269,7 +319,7 @@ def read_compass(cast: Cast, mention: Mention) -> GroundedFact | None:
                 name="spawn_position",
                 value=position.value,
                 source=FactSource.TEXT,
-                quote=found.group(0),
+                quote=heading[1],
             )
     return None
 
