@@ -148,6 +148,13 @@ class EgoManeuver(StrEnum):
     CHANGE_LANE = "change_lane"
 
 
+class Side(StrEnum):
+    """Which way the ego changes lanes, when the description says."""
+
+    LEFT = "left"
+    RIGHT = "right"
+
+
 class AdversaryManeuver(StrEnum):
     """Which way the adversary goes through a junction, when the description says so."""
 

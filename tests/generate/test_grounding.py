@@ -364,3 +364,21 @@ def test_crash_report_sides_from_streets_squeezes_and_ramps(text: str, position:
     fact = reading.facts["spawn_position"]
     assert fact.value == position
     assert fact.quote is not None and fact.quote in text
+
+
+@pytest.mark.parametrize(
+    ("text", "side"),
+    [
+        (
+            "A barrier blocks the ego's lane on a highway and the ego changes lanes to the left "
+            "to get around it.",
+            "left",
+        ),
+        ("The ego moves into the right lane while a scooter rides in that lane.", "right"),
+        ("The ego changes lanes while a car ahead brakes.", None),
+        ("A truck on the left changes into the right lane in front of the ego.", None),
+    ],
+)
+def test_the_side_of_the_egos_lane_change_is_its_own(text: str, side: str | None) -> None:
+    fact = read_description(text).facts.get("ego_lane_side")
+    assert (fact.value if fact else None) == side

@@ -346,3 +346,20 @@ def test_a_moving_ego_never_gets_a_stopped_geometry(kb, bm25, road: str) -> None
         result = retrieve(make_spec(position, road=road), kb, bm25, MAPS)
         for other in result.candidates[Component.GEOMETRY]:
             assert "ego_stopped" not in other.tags, other.id
+
+
+@pytest.mark.parametrize("road", ["straight_road", "highway"])
+@pytest.mark.parametrize("side", ["left", "right", None])
+def test_an_ego_lane_change_gets_a_geometry_where_the_ego_changes_lanes(
+    kb, bm25, road: str, side: str | None
+) -> None:
+    spec = make_spec(RelativePosition.AHEAD_SAME_LANE, road=road, ego="change_lane")
+    spec = spec.model_copy(update={"ego_lane_side": side})
+    result = retrieve(spec, kb, bm25, MAPS)
+    for geometry in result.candidates[Component.GEOMETRY]:
+        assert "ego_lane_change" in geometry.tags, geometry.id
+        if side is not None:
+            assert f"ego_changes_{side}" in geometry.tags, geometry.id
+    straight = retrieve(make_spec(RelativePosition.AHEAD_SAME_LANE, road=road), kb, bm25, MAPS)
+    for geometry in straight.candidates[Component.GEOMETRY]:
+        assert "ego_lane_change" not in geometry.tags, geometry.id

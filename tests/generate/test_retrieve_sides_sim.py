@@ -11,7 +11,7 @@ import math
 
 import pytest
 
-from arise.evaluate.fidelity import Direction, placement
+from arise.evaluate.fidelity import Direction, Maneuver, observed_maneuver, placement
 from arise.generate.assemble import assemble
 from arise.generate.conformity import (
     at_junction,
@@ -205,3 +205,29 @@ def test_an_oncoming_drifter_stays_oncoming_until_the_scene_ends(
         where = placement(ego_trace, adversary)
         assert where is not None and where.direction is Direction.OPPOSITE, (seed, where)
         assert result.simulation.steps < 200, "the scene ends once the car is well past"
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("side", ["left", "right"])
+def test_the_ego_changes_lanes_to_the_stated_side(
+    kb: KnowledgeBase, maps: dict[str, frozenset[str]], validator_pool: WorkerPool, side: str
+) -> None:
+    spec = ScenarioSpec(
+        adversary_type="car",
+        behavior="brakes",
+        road_type="straight_road",
+        ego_maneuver="change_lane",
+        ego_lane_side=side,
+        geometry="a multi-lane road",
+        spawn_position=RelativePosition.AHEAD_SAME_LANE,
+        spawn="a car ahead",
+    )
+    retrieval = retrieve(spec, kb, BM25Retriever(kb), maps)
+    chosen = [e.id for e in retrieval.chosen_entries()]
+    draft = assemble(retrieval, "Car", "ego lane change", params={})
+    for seed in SEEDS:
+        result = check_text(draft.script, CheckOptions(seed=seed, timeout=60), pool=validator_pool)
+        assert result.ok and result.simulation is not None, (chosen, result.diagnostic)
+        ego_trace = next(a for a in result.simulation.agents if a.is_ego)
+        assert observed_maneuver(ego_trace) is Maneuver(f"lane_change_{side}"), (chosen, seed)
+        assert ego_trace.lane_changes == 1, (chosen, seed)

@@ -37,6 +37,7 @@ from arise.vocabulary import (
     EgoManeuver,
     RelativePosition,
     RoadType,
+    Side,
 )
 
 # -- the grounded spec ----------------------------------------------------------------------
@@ -279,6 +280,7 @@ def ground(description: str, answer: ExtractionAnswer) -> Grounded:
         adversary_maneuver=AdversaryManeuver(facts["adversary_maneuver"].value),
         adversary_stationary="adversary_stationary" in facts,
         ego_stopped="ego_stopped" in facts,
+        ego_lane_side=Side(facts["ego_lane_side"].value) if "ego_lane_side" in facts else None,
         no_adversary=no_adversary,
         participants=participants,
         actors=read_actors(reading),

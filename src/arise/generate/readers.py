@@ -372,6 +372,16 @@ def read_maneuvers(reading: Reading) -> None:
         reading.facts["ego_maneuver"] = GroundedFact(
             name="ego_maneuver", value=ego[0].value, source=FactSource.TEXT, quote=ego[1]
         )
+    if ego is not None and ego[0] is EgoManeuver.CHANGE_LANE:
+        for match in _EGO_LANE_SIDE.finditer(cast.text):
+            if _subject(cast, match.start()) == "ego":
+                reading.facts["ego_lane_side"] = GroundedFact(
+                    name="ego_lane_side",
+                    value=match.group(1).lower(),
+                    source=FactSource.TEXT,
+                    quote=match.group(0),
+                )
+                break
     if adversary is not None:
         reading.facts["adversary_maneuver"] = GroundedFact(
             name="adversary_maneuver",

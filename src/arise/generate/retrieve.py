@@ -42,6 +42,8 @@ ROAD_FEATURES: dict[RoadType, tuple[str, ...]] = {
     RoadType.HIGHWAY: ("highway",),
 }
 JUNCTION_FEATURES = {"intersection4", "tjunction"}
+#: A geometry whose ego changes lanes (tagged also ego_changes_left or _right).
+EGO_LANE_CHANGE_TAG = "ego_lane_change"
 #: A geometry whose ego stands still for the whole scene; only a stopped ego gets one.
 EGO_STOPPED_TAG = "ego_stopped"
 MANEUVER_TAGS: dict[EgoManeuver, tuple[str, ...]] = {
@@ -266,9 +268,14 @@ def _geometry_pool(
     def maneuver_fits(entry: Entry) -> bool:
         tags = set(entry.tags) | set(entry.id.split(".")[-1].split("_"))
         turns = {"left_turn", "right_turn", "unprotected_left_turn"}
+        changes = EGO_LANE_CHANGE_TAG in tags
         if spec.ego_maneuver is EgoManeuver.GO_STRAIGHT:
-            return not tags & turns
-        return bool(tags & set(MANEUVER_TAGS[spec.ego_maneuver]))
+            return not tags & turns and not changes
+        if spec.ego_maneuver is EgoManeuver.CHANGE_LANE:
+            # Only a geometry whose ego really changes lanes, to the stated side if any.
+            side = spec.ego_lane_side
+            return changes and (side is None or f"ego_changes_{side}" in tags)
+        return bool(tags & set(MANEUVER_TAGS[spec.ego_maneuver])) and not changes
 
     def stop_fits(entry: Entry) -> bool:
         return (EGO_STOPPED_TAG in entry.tags) == spec.ego_stopped

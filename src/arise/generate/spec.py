@@ -22,6 +22,7 @@ from arise.vocabulary import (
     EgoManeuver,
     RelativePosition,
     RoadType,
+    Side,
 )
 
 __all__ = [
@@ -121,6 +122,9 @@ class ScenarioSpec(BaseModel):
     )
     adversary_stationary: bool = Field(
         default=False, description="the text says the adversary is parked, stalled or stopped"
+    )
+    ego_lane_side: Side | None = Field(
+        default=None, description="the side the ego changes lanes to, if the text says"
     )
     ego_stopped: bool = Field(
         default=False,
