@@ -133,6 +133,11 @@ def test_weather_comes_from_weather_words_only(text: str, preset: str, source: F
         ),
         ("The AV was travelling east at 18 mph behind a box truck.", "ahead_same_lane"),
         (
+            "The ego turns right at a crossroads; just after the turn a motorcycle is stopped "
+            "in the lane the ego enters.",
+            "ahead_same_lane",
+        ),
+        (
             "The ego moves into the right lane where a scooter is riding in that lane.",
             "adjacent_lane_right",
         ),

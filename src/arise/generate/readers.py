@@ -83,7 +83,7 @@ _POSITION_CUES: tuple[tuple[RelativePosition, str], ...] = (
 # lane change ("moves into the left lane").
 _TARGET_LANE = re.compile(
     r"\b(?:in|into) (?:that|the target) lane\b|\bthe lane (?:the ego|the av|it) "
-    r"(?:enters|is entering|moves into|changes into|merges into)\b",
+    r"(?:enters|is entering|moves into|changes into|merges into|turns into|is turning into)\b",
     re.I,
 )
 _EGO_LANE_SIDE = re.compile(
@@ -236,6 +236,9 @@ def read_position(cast: Cast, mention: Mention) -> GroundedFact | None:
             best = (start + bare.start(), 99, position, bare.group(0))
         target = _TARGET_LANE.search(words)
         lane_side = _EGO_LANE_SIDE.search(cast.text)
+        if target and not lane_side and (best is None or start + target.start() < best[0]):
+            # The lane the ego turns into, with no lane change said: ahead on its route.
+            best = (start + target.start(), -1, RelativePosition.AHEAD_SAME_LANE, target.group(0))
         if target and lane_side and (best is None or start + target.start() < best[0]):
             position = (
                 RelativePosition.ADJACENT_LANE_LEFT

@@ -42,6 +42,11 @@ ROAD_FEATURES: dict[RoadType, tuple[str, ...]] = {
     RoadType.HIGHWAY: ("highway",),
 }
 JUNCTION_FEATURES = {"intersection4", "tjunction"}
+#: Words that place the adversary in the lane a turning ego goes into.
+_EXIT_WORDS = re.compile(
+    r"\b(?:enters|is entering|turns into|turning into|after the turn|past the (?:turn|junction))",
+    re.I,
+)
 #: A geometry whose ego changes lanes (tagged also ego_changes_left or _right).
 EGO_LANE_CHANGE_TAG = "ego_lane_change"
 #: A geometry whose ego stands still for the whole scene; only a stopped ego gets one.
@@ -389,6 +394,11 @@ def retrieve(
             spec, kb, retriever, maps, choose_map, result, geometries, query, topk
         )
     spawn_tags = set(SPAWN_TAGS[spec.spawn_position])
+    # In the lane a turning ego goes into ("just after the turn ... in the lane it enters").
+    exit_lane = spec.ego_maneuver in (
+        EgoManeuver.TURN_LEFT,
+        EgoManeuver.TURN_RIGHT,
+    ) and bool(_EXIT_WORDS.search(f"{spec.spawn} {spec.behavior}"))
     spawns = _prefer(
         _ranked(
             retriever,
@@ -396,7 +406,9 @@ def retrieve(
             Component.SPAWN,
             [e for e in kb.of(Component.SPAWN) if e.suits(adversary) and placeable(e)],
         ),
-        lambda e: len(spawn_tags & set(e.tags)),
+        lambda e: (
+            len(spawn_tags & set(e.tags)) + (10 if exit_lane and "exit_lane" in e.tags else 0)
+        ),
     )
     behaviors = _ranked(
         retriever,
