@@ -363,3 +363,19 @@ def test_an_ego_lane_change_gets_a_geometry_where_the_ego_changes_lanes(
     straight = retrieve(make_spec(RelativePosition.AHEAD_SAME_LANE, road=road), kb, bm25, MAPS)
     for geometry in straight.candidates[Component.GEOMETRY]:
         assert "ego_lane_change" not in geometry.tags, geometry.id
+
+
+def test_a_stopped_ego_on_a_road_no_stopped_geometry_has_keeps_the_road_and_drives(
+    kb, bm25
+) -> None:
+    from arise.generate.pipeline import _holdable
+
+    spec = make_spec(RelativePosition.CROSSING_FROM_RIGHT, road="t_junction")
+    spec = spec.model_copy(update={"ego_stopped": True})
+    result = retrieve(spec, kb, bm25, MAPS)
+    assert "tjunction" in result.chosen[Component.GEOMETRY][0].map_features
+    assert "no geometry entry keeps the ego stopped on t_junction; it drives" in result.notes
+    assert _holdable(spec, result).ego_stopped is False  # the gate does not chase it
+    at_lights = ScenarioSpec.model_validate(spec.model_dump() | {"road_type": "intersection"})
+    held = retrieve(at_lights, kb, bm25, MAPS)
+    assert _holdable(spec, held).ego_stopped is True

@@ -28,7 +28,7 @@ from arise.generate.outputs import (
     write_script,
 )
 from arise.generate.repair import GatedValidate, RepairContext, Validate, repair_loop
-from arise.generate.retrieve import Retrieval, retrieve
+from arise.generate.retrieve import EGO_STOPPED_TAG, Retrieval, retrieve
 from arise.generate.rules import RuleContext
 from arise.generate.run import Attempt, AttemptKind, Generation, Outcome, RunStatus
 from arise.generate.spec import ScenarioSpec
@@ -60,6 +60,15 @@ GROUNDED_CHECKS = frozenset(
 class ReconfigureError(AriseError):
     """A change `Generator.reconfigure` cannot honour (another model for a provider the
     caller gave): build another Generator."""
+
+
+def _holdable(spec: ScenarioSpec, retrieval: Retrieval) -> ScenarioSpec:
+    """The spec the gate holds a script to: a stopped ego only when some geometry candidate
+    can keep it still (else retrieval already said it drives, and no swap would help)."""
+    geometries = retrieval.candidates.get(Component.GEOMETRY, [])
+    if spec.ego_stopped and not any(EGO_STOPPED_TAG in e.tags for e in geometries):
+        return spec.model_copy(update={"ego_stopped": False})
+    return spec
 
 
 def slug(text: str) -> str:
@@ -349,7 +358,7 @@ class Generator:
         return repair_loop(
             run,
             draft.script,
-            self.validator(run.out_dir, spec),
+            self.validator(run.out_dir, _holdable(spec, run.retrieval)),
             context,
             max_repairs=options.max_repairs,
             emit=emit,

@@ -285,17 +285,27 @@ def _geometry_pool(
     def stop_fits(entry: Entry) -> bool:
         return (EGO_STOPPED_TAG in entry.tags) == spec.ego_stopped
 
-    placeable_entries = [e for e in entries if placeable(e) and stop_fits(e)]
-    if not placeable_entries and spec.ego_stopped:
-        notes.append("no geometry entry keeps the ego stopped here; it drives")
-        placeable_entries = [e for e in entries if placeable(e) and not stop_fits(e)]
+    def drives(entry: Entry) -> bool:
+        return EGO_STOPPED_TAG not in entry.tags
+
+    road, maneuver = spec.road_type, spec.ego_maneuver
+    placeable_entries = [e for e in entries if placeable(e)]
     for fits, note in (
-        (lambda e: road_fits(e) and maneuver_fits(e), None),
+        (lambda e: road_fits(e) and maneuver_fits(e) and stop_fits(e), None),
         (
-            road_fits,
-            f"no geometry entry for {spec.ego_maneuver} on {spec.road_type}; kept the road type",
+            lambda e: road_fits(e) and stop_fits(e),
+            f"no geometry entry for {maneuver} on {road}; kept the road type",
         ),
-        (maneuver_fits, f"no geometry entry for {spec.road_type}; kept the maneuver"),
+        # A stopped ego on a road no stopped geometry has: keep the road, let it drive.
+        (
+            lambda e: road_fits(e) and maneuver_fits(e) and drives(e),
+            f"no geometry entry keeps the ego stopped on {road}; it drives",
+        ),
+        (
+            lambda e: maneuver_fits(e) and stop_fits(e),
+            f"no geometry entry for {road}; kept the maneuver",
+        ),
+        (stop_fits, "no geometry entry matched the road type or maneuver"),
         (lambda e: True, "no geometry entry matched the road type or maneuver"),
     ):
         pool = [e for e in placeable_entries if fits(e)]
