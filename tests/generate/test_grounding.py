@@ -387,3 +387,34 @@ def test_crash_report_sides_from_streets_squeezes_and_ramps(text: str, position:
 def test_the_side_of_the_egos_lane_change_is_its_own(text: str, side: str | None) -> None:
     fact = read_description(text).facts.get("ego_lane_side")
     assert (fact.value if fact else None) == side
+
+
+def test_a_trailing_participle_belongs_to_the_clause_subject() -> None:
+    text = (
+        "On a four-lane road a car weaves between lanes in front of the ego, changing lanes "
+        "twice in quick succession."
+    )
+    assert "ego_maneuver" not in read_description(text).facts
+
+
+def test_signalling_is_no_traffic_signal_and_behind_a_van_is_no_rear() -> None:
+    text = (
+        "A truck in the adjacent right lane drifts into the ego's lane without signalling "
+        "while both travel side by side."
+    )
+    answer = ExtractionAnswer.model_validate(
+        {
+            "adversary": "A truck",
+            "adversary_type": "truck",
+            "behavior": "",
+            "road_type": "straight_road",
+            "ego_maneuver": "go_straight",
+            "geometry": "",
+            "spawn_position": "adjacent_lane_right",
+            "spawn": "",
+        }
+    )
+    assert ground(text, answer).spec.road_type == "straight_road"
+    child = "On a straight street, a child runs out from behind a parked van on the right."
+    position = read_description(child, "a child").facts.get("spawn_position")
+    assert position is None or position.value != "behind_same_lane"

@@ -141,7 +141,10 @@ def _road(
     ):  # a vehicle cannot come from the side on an open road
         return _fact("road_type", RoadType.INTERSECTION.value, FactSource.TEXT, position.quote)
     signal = re.search(
-        r"\b(?:red light|traffic lights?|signal\w*|stop sign|green light)\b", description, re.I
+        r"\b(?:red light|traffic lights?|signali[sz]ed|signals?\b(?! (?:left|right))|"
+        r"stop sign|green light)\b",
+        description,
+        re.I,
     )
     if signal is not None:
         return _fact("road_type", RoadType.INTERSECTION.value, FactSource.TEXT, signal.group(0))

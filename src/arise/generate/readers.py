@@ -66,7 +66,7 @@ _POSITION_CUES: tuple[tuple[RelativePosition, str], ...] = (
     ),
     (
         RelativePosition.BEHIND_SAME_LANE,
-        r"from behind|behind the (?:ego|av)|behind it\b|"
+        r"from behind(?!\s+(?:a|an|the|some)\s+(?!ego\b|av\b))|behind the (?:ego|av)|behind it\b|"
         r"following the (?:ego|av)|approaching from the rear|rear[- ]end\w*|"
         r"(?:a|an|the) following \w+",
     ),
@@ -212,8 +212,13 @@ def read_position(cast: Cast, mention: Mention) -> GroundedFact | None:
     best: tuple[int, int, RelativePosition, str] | None = None
     for start, end in words_of(cast, mention):
         words = cast.text[start:end]
+        # The cues' look-aheads may see a little past the stretch ("from behind | a parked
+        # van"); the cue itself must lie inside it.
+        seen = cast.text[start : end + 40]
         for order, (position, pattern) in enumerate(_POSITION_CUES):
-            match = re.search(rf"\b(?:{pattern})\b", words, re.I)
+            match = re.search(rf"\b(?:{pattern})\b", seen, re.I)
+            if match and match.end() > len(words):
+                match = None
             if match and (best is None or (start + match.start(), order) < best[:2]):
                 best = (start + match.start(), order, position, match.group(0))
         bare = _BARE_SIDE.search(words)
@@ -336,6 +341,10 @@ def _subject(cast: Cast, position: int) -> Mention | str | None:
         r"\s*(?:while |when |as |after |before )?", head[sentence_start:], re.I
     ):
         return cast.subject_after(position)
+    if re.search(r",\s*$", head) and re.match(r"\w+ing\b", cast.text[position:]):
+        # A trailing participle (", changing lanes twice") is about the clause's subject,
+        # the first actor of the sentence, not the last one named before the comma.
+        return cast.subject_after(sentence_start)
     return cast.subject_before(position)
 
 
