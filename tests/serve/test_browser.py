@@ -128,7 +128,7 @@ def test_submit_an_example_and_see_every_stage(page: Any, artifacts: Path) -> No
     assert page.get_attribute(f"#jobs li[data-id='{job}']", "data-state") == "done"
 
 
-def poll(frame: Any, expression: str, timeout: float = 20.0) -> None:
+def poll(frame: Any, expression: str, timeout: float = 60.0) -> None:
     """Wait until `expression` is true in the frame. (The replay's policy forbids eval,
     which Playwright's wait_for_function polls with; evaluate() is not affected.)"""
     deadline = time.monotonic() + timeout
