@@ -29,8 +29,8 @@ def _cases(geometries: list[Entry]) -> list[tuple[Entry, float]]:
     cases = []
     for entry in geometries:
         found = SPEED.search(entry.snippet)
-        if found is None:
-            continue
+        if found is None or "ego_lane_change" in entry.tags:
+            continue  # no speed to set, or the ego changes lanes on purpose (tested apart)
         cases.append((entry, float(found.group(2))))
         if "highway" in entry.map_features:
             cases.append((entry, HIGHWAY_TOP_SPEED))
