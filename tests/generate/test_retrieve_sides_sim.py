@@ -26,7 +26,7 @@ from arise.kb.loader import KnowledgeBase, load_kb
 from arise.kb.retrieval import BM25Retriever
 from arise.maps.registry import MapRegistry
 from arise.validate import CheckOptions, WorkerPool, check_text
-from arise.validate.types import AgentTrace
+from arise.validate.types import AgentTrace, SimulationFacts
 from arise.vocabulary import AdversaryManeuver, RelativePosition
 
 TURN_DEGREES = 45.0
@@ -78,6 +78,26 @@ def adversary_turn(adversary: AgentTrace) -> AdversaryManeuver | None:
     return AdversaryManeuver.STRAIGHT
 
 
+def simulated(
+    spec: ScenarioSpec,
+    cls: str,
+    kb: KnowledgeBase,
+    maps: dict[str, frozenset[str]],
+    pool: WorkerPool,
+) -> tuple[list[str], list[tuple[int, SimulationFacts]]]:
+    """The chosen entries for `spec`, and the simulation of the assembled script per seed
+    (each must run)."""
+    retrieval = retrieve(spec, kb, BM25Retriever(kb), maps)
+    chosen = [e.id for e in retrieval.chosen_entries()]
+    draft = assemble(retrieval, cls, spec.behavior, params={})
+    runs = []
+    for seed in SEEDS:
+        result = check_text(draft.script, CheckOptions(seed=seed, timeout=60), pool=pool)
+        assert result.ok and result.simulation is not None, (chosen, result.diagnostic)
+        runs.append((seed, result.simulation))
+    return chosen, runs
+
+
 @pytest.mark.slow
 @pytest.mark.parametrize(("road", "ego", "position", "turn"), CASES)
 def test_the_adversary_starts_on_the_stated_side_and_goes_the_stated_way(
@@ -99,14 +119,10 @@ def test_the_adversary_starts_on_the_stated_side_and_goes_the_stated_way(
         spawn="another car approaches the junction",
         adversary_maneuver=turn,
     )
-    retrieval = retrieve(spec, kb, BM25Retriever(kb), maps)
-    chosen = [e.id for e in retrieval.chosen_entries()]
-    draft = assemble(retrieval, "Car", "side-aware retrieval", params={})
+    chosen, runs = simulated(spec, "Car", kb, maps, validator_pool)
     side, direction = WANTED_SIDE[position]
-    for seed in SEEDS:
-        result = check_text(draft.script, CheckOptions(seed=seed, timeout=60), pool=validator_pool)
-        assert result.ok and result.simulation is not None, (chosen, result.diagnostic)
-        agents = result.simulation.agents
+    for seed, simulation in runs:
+        agents = simulation.agents
         ego_trace = next(a for a in agents if a.is_ego)
         adversary = find_adversary(agents)
         assert adversary is not None, chosen
@@ -151,13 +167,9 @@ def test_a_stopped_ego_never_moves_and_is_still_met(
         spawn="another vehicle approaches",
         adversary_maneuver=turn,
     )
-    retrieval = retrieve(spec, kb, BM25Retriever(kb), maps)
-    chosen = [e.id for e in retrieval.chosen_entries()]
-    draft = assemble(retrieval, cls, "stopped ego", params={})
-    for seed in SEEDS:
-        result = check_text(draft.script, CheckOptions(seed=seed, timeout=60), pool=validator_pool)
-        assert result.ok and result.simulation is not None, (chosen, result.diagnostic)
-        agents = result.simulation.agents
+    chosen, runs = simulated(spec, cls, kb, maps, validator_pool)
+    for seed, simulation in runs:
+        agents = simulation.agents
         ego_trace = next(a for a in agents if a.is_ego)
         assert travel_heading(ego_trace) is None, (chosen, seed, "the ego moved")
         assert at_junction(ego_trace) is (road == "intersection"), (chosen, ego_trace.junction_gap)
@@ -191,20 +203,16 @@ def test_an_oncoming_drifter_stays_oncoming_until_the_scene_ends(
         spawn_position=RelativePosition.ONCOMING,
         spawn="an oncoming car",
     )
-    retrieval = retrieve(spec, kb, BM25Retriever(kb), maps)
-    chosen = [e.id for e in retrieval.chosen_entries()]
+    chosen, runs = simulated(spec, "Car", kb, maps, validator_pool)
     assert "behavior.oncoming_drift_into_lane" in chosen
-    draft = assemble(retrieval, "Car", "oncoming drift", params={})
-    for seed in SEEDS:
-        result = check_text(draft.script, CheckOptions(seed=seed, timeout=60), pool=validator_pool)
-        assert result.ok and result.simulation is not None, (chosen, result.diagnostic)
-        agents = result.simulation.agents
+    for seed, simulation in runs:
+        agents = simulation.agents
         ego_trace = next(a for a in agents if a.is_ego)
         adversary = find_adversary(agents)
         assert adversary is not None
         where = placement(ego_trace, adversary)
         assert where is not None and where.direction is Direction.OPPOSITE, (seed, where)
-        assert result.simulation.steps < 200, "the scene ends once the car is well past"
+        assert simulation.steps < 200, "the scene ends once the car is well past"
 
 
 @pytest.mark.slow
@@ -222,12 +230,8 @@ def test_the_ego_changes_lanes_to_the_stated_side(
         spawn_position=RelativePosition.AHEAD_SAME_LANE,
         spawn="a car ahead",
     )
-    retrieval = retrieve(spec, kb, BM25Retriever(kb), maps)
-    chosen = [e.id for e in retrieval.chosen_entries()]
-    draft = assemble(retrieval, "Car", "ego lane change", params={})
-    for seed in SEEDS:
-        result = check_text(draft.script, CheckOptions(seed=seed, timeout=60), pool=validator_pool)
-        assert result.ok and result.simulation is not None, (chosen, result.diagnostic)
-        ego_trace = next(a for a in result.simulation.agents if a.is_ego)
+    chosen, runs = simulated(spec, "Car", kb, maps, validator_pool)
+    for seed, simulation in runs:
+        ego_trace = next(a for a in simulation.agents if a.is_ego)
         assert observed_maneuver(ego_trace) is Maneuver(f"lane_change_{side}"), (chosen, seed)
         assert ego_trace.lane_changes == 1, (chosen, seed)
