@@ -40,7 +40,7 @@ DESCRIPTION = "The ego drives along a straight road when a cyclist ahead in its 
 RUN_TIMEOUT_S = 600
 
 
-def _free_port() -> int:
+def free_port() -> int:
     with socket.socket() as probe:
         probe.bind(("127.0.0.1", 0))
         return int(probe.getsockname()[1])
@@ -70,7 +70,7 @@ def main() -> int:
     from playwright.sync_api import sync_playwright
 
     arise = Path(sys.executable).parent / "arise"
-    port = _free_port()
+    port = free_port()
     url = f"http://127.0.0.1:{port}/"
     with tempfile.TemporaryDirectory(prefix="arise-serve-") as runs:
         started = time.perf_counter()

@@ -3,27 +3,15 @@ browser Playwright downloads), and a real server on loopback in a thread."""
 
 from __future__ import annotations
 
-import os
-import socket
 import threading
 import time
 from collections.abc import Iterator
 from contextlib import contextmanager
-from pathlib import Path
 
 import pytest
+from benchmarks.serve_embedded import CHROMIUM, CHROMIUM_ARGS, free_port
 
-CHROMIUM = Path(os.environ.get("ARISE_CHROMIUM", "/usr/bin/chromium"))
-CHROMIUM_ARGS = [
-    "--headless",
-    "--no-sandbox",
-    "--disable-gpu",
-    "--disable-quic",
-    "--no-first-run",
-    "--disable-background-networking",
-    "--disable-component-update",
-    "--disable-sync",
-]
+__all__ = ["CHROMIUM", "CHROMIUM_ARGS", "free_port", "serving", "skip_without_browser"]
 
 
 def skip_without_browser() -> None:
@@ -37,12 +25,6 @@ def skip_without_browser() -> None:
         import playwright.sync_api  # noqa: F401
     except ImportError:
         pytest.skip("playwright is not installed (the dev extra has it)")
-
-
-def free_port() -> int:
-    with socket.socket() as probe:
-        probe.bind(("127.0.0.1", 0))
-        return int(probe.getsockname()[1])
 
 
 @contextmanager
