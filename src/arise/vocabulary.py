@@ -95,6 +95,15 @@ class RelativePosition(StrEnum):  # where the adversary starts, seen from the eg
     CROSSING_FROM_RIGHT = "crossing_road_from_right"
 
 
+class StartDetail(StrEnum):
+    """A finer point of where the adversary starts, when the description says it: which
+    end of the lane beside the ego, or which corner of the street a turning ego enters."""
+
+    FROM_BEHIND = "from_behind"  # comes up from behind ("approaching from behind on its right")
+    EXIT_CROSSING = "exit_crossing"  # on the crossing of the street a turning ego enters
+    EXIT_FAR_CORNER = "exit_far_corner"  # from that crossing's far corner
+
+
 class ActorRole(StrEnum):
     """What a road user or object is for in a scene (the adversary causes the danger)."""
 
@@ -136,6 +145,8 @@ class Approach(StrEnum):
     ADJACENT_RIGHT = "adjacent_right"  # same direction, in the lane to the ego's right
     ROADSIDE_LEFT = "roadside_left"  # stays beside the road on the left (parked, walking along)
     ROADSIDE_RIGHT = "roadside_right"  # stays beside the road on the right
+    # on the side the ego turns to: the street a turning ego enters (its kerbs and crossing)
+    TURN_SIDE = "turn_side"
 
 
 # -- what the ego does ----------------------------------------------------------------------

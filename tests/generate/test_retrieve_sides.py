@@ -176,8 +176,10 @@ def test_every_spawn_says_its_side_or_takes_the_geometrys(kb) -> None:
         for e in kb.of(Component.SPAWN)
         if e.approach is None and "conflictManeuver" not in e.needs
     }
-    # Its kerb is the exit road's: left or right of the ego depends on the ego's turn.
-    assert silent == {"spawn.junction_exit_roadside"}
+    assert silent == set()
+    # The kerbs and crossing of the exit road: left or right of the ego is the ego's turn.
+    turn_side = {e.id for e in kb.of(Component.SPAWN) if e.approach is Approach.TURN_SIDE}
+    assert turn_side == {"spawn.junction_exit_roadside", "spawn.junction_exit_far_corner"}
 
 
 def test_side_fields_are_refused_where_they_mean_nothing() -> None:
@@ -379,3 +381,13 @@ def test_a_stopped_ego_on_a_road_no_stopped_geometry_has_keeps_the_road_and_driv
     at_lights = ScenarioSpec.model_validate(spec.model_dump() | {"road_type": "intersection"})
     held = retrieve(at_lights, kb, bm25, MAPS)
     assert _holdable(spec, held).ego_stopped is True
+
+
+def test_a_spawn_on_the_exit_street_takes_the_side_the_ego_turns_to(kb) -> None:
+    spawn = kb.get("spawn.junction_exit_far_corner")
+    right = kb.get("geometry.junction_right_turn_exit_crossing")
+    left = kb.get("geometry.junction_left_turn_oncoming")
+    straight = kb.get("geometry.junction_straight_cross_traffic")
+    assert pair_approach(right, spawn) is Approach.ROADSIDE_RIGHT
+    assert pair_approach(left, spawn) is Approach.ROADSIDE_LEFT
+    assert pair_approach(straight, spawn) is None

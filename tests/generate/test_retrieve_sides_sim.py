@@ -80,7 +80,7 @@ def adversary_turn(adversary: AgentTrace) -> AdversaryManeuver | None:
 
 def simulated(
     spec: ScenarioSpec,
-    cls: str,
+    cls: str | None,
     kb: KnowledgeBase,
     maps: dict[str, frozenset[str]],
     pool: WorkerPool,

@@ -38,6 +38,7 @@ from arise.vocabulary import (
     RelativePosition,
     RoadType,
     Side,
+    StartDetail,
 )
 
 # -- the grounded spec ----------------------------------------------------------------------
@@ -283,6 +284,9 @@ def ground(description: str, answer: ExtractionAnswer) -> Grounded:
         adversary_maneuver=AdversaryManeuver(facts["adversary_maneuver"].value),
         adversary_stationary="adversary_stationary" in facts,
         ego_stopped="ego_stopped" in facts,
+        start_detail=(
+            StartDetail(facts["start_detail"].value) if "start_detail" in facts else None
+        ),
         ego_lane_side=Side(facts["ego_lane_side"].value) if "ego_lane_side" in facts else None,
         no_adversary=no_adversary,
         participants=participants,

@@ -14,7 +14,13 @@ from arise.generate.facts import FactSource, GroundedFact
 from arise.generate.mentions import VEHICLE_CLASSES, Cast, Mention, phrase_start, read_cast
 from arise.generate.quotes import find_quote
 from arise.generate.weather_words import read_weather
-from arise.vocabulary import AdversaryManeuver, AdversaryType, EgoManeuver, RelativePosition
+from arise.vocabulary import (
+    AdversaryManeuver,
+    AdversaryType,
+    EgoManeuver,
+    RelativePosition,
+    StartDetail,
+)
 
 _SIDE = r"(?:the |its |his |her |their |the ego's |the av's )?"
 # "from the side road on its right": a road user coming out of a road from that side.
@@ -204,6 +210,9 @@ def _ego_follows(cast: Cast, mention: Mention) -> GroundedFact | None:
     return None
 
 
+_ADJACENT = (RelativePosition.ADJACENT_LANE_LEFT, RelativePosition.ADJACENT_LANE_RIGHT)
+
+
 def read_position(cast: Cast, mention: Mention) -> GroundedFact | None:
     """Where `mention` starts, seen from the ego, from the words about it."""
     told = _ego_follows(cast, mention) or _squeezed_beside(cast, mention)
@@ -215,12 +224,18 @@ def read_position(cast: Cast, mention: Mention) -> GroundedFact | None:
         # The cues' look-aheads may see a little past the stretch ("from behind | a parked
         # van"); the cue itself must lie inside it.
         seen = cast.text[start : end + 40]
+        cues: list[tuple[int, int, RelativePosition, str]] = []
         for order, (position, pattern) in enumerate(_POSITION_CUES):
             match = re.search(rf"\b(?:{pattern})\b", seen, re.I)
-            if match and match.end() > len(words):
-                match = None
-            if match and (best is None or (start + match.start(), order) < best[:2]):
-                best = (start + match.start(), order, position, match.group(0))
+            if match and match.end() <= len(words):
+                cues.append((start + match.start(), order, position, match.group(0)))
+        beside = [c for c in cues if c[2] in _ADJACENT]
+        if beside and any(c[2] is RelativePosition.BEHIND_SAME_LANE for c in cues):
+            # "comes from behind in the left lane": behind, but in the lane beside the ego.
+            cues = beside
+        for cue in cues:
+            if best is None or cue[:2] < best[:2]:
+                best = cue
         bare = _BARE_SIDE.search(words)
         if bare and best is None:
             side = bare.group(1).lower()
@@ -244,7 +259,14 @@ def read_position(cast: Cast, mention: Mention) -> GroundedFact | None:
         if target and not lane_side and (best is None or start + target.start() < best[0]):
             # The lane the ego turns into, with no lane change said: ahead on its route.
             best = (start + target.start(), -1, RelativePosition.AHEAD_SAME_LANE, target.group(0))
-        if target and lane_side and (best is None or start + target.start() < best[0]):
+        behind_here = (
+            best is not None and best[2] is RelativePosition.BEHIND_SAME_LANE and best[0] >= start
+        )
+        if (
+            target
+            and lane_side
+            and (best is None or start + target.start() < best[0] or behind_here)
+        ):
             position = (
                 RelativePosition.ADJACENT_LANE_LEFT
                 if lane_side.group(1).lower() == "left"
@@ -403,6 +425,81 @@ def read_maneuvers(reading: Reading) -> None:
         )
 
 
+# "approaching from behind on the AV's right", "coming up behind", "overtakes": the adversary
+# starts behind the ego; "from behind a parked van" is where it hides, not where it starts.
+_FROM_BEHIND = re.compile(
+    r"\b(?:from behind(?!\s+(?:a|an|the|some)\s+(?!ego\b|av\b))|(?:coming|came|comes) up "
+    r"behind|from the rear|approach\w* from (?:behind|the rear)|overtak\w+|undertak\w+)",
+    re.I,
+)
+# The crossing of the street a turning ego enters ("in the crosswalk of the street it enters").
+_EXIT_STREET = re.compile(
+    r"\b(?:street|road|crosswalk|crossing)\b[^.;]{0,30}?\b(?:it|the ego|the av) (?:enters|is "
+    r"entering|entered|(?:turns|is turning|turned) (?:into|onto))\b|\bthe side (?:street|road)\b",
+    re.I,
+)
+_FAR_CORNER = re.compile(
+    r"\b(?:far|opposite) (?:corner|kerb|curb)\b|\bfar side of the (?:street|road|crossing|"
+    r"crosswalk)\b",
+    re.I,
+)
+_CROSSES = re.compile(r"\bcross\w*|\bcrosswalk\b|\bzebra\b", re.I)
+_ONTO_STREET = re.compile(rf"\b(?:onto|into) ({_STREET})")
+
+
+def _exit_street_named(cast: Cast, words: str) -> re.Match[str] | None:
+    """ "the AV was turning right ... onto Tamsin Street when a pedestrian entered the
+    crosswalk on Tamsin Street": the street the ego turns onto, named in the actor's words."""
+    for onto in _ONTO_STREET.finditer(cast.text):
+        if _subject(cast, onto.start()) == "ego":
+            return re.search(rf"\b(?:on|across|of) {re.escape(onto.group(1))}", words)
+    return None
+
+
+def read_start_detail(reading: Reading) -> None:
+    """Which end of the lane beside the ego the adversary starts at, or which corner of the
+    street a turning ego enters; a walker on that street starts on the side the ego turns to."""
+    adversary = reading.adversary
+    if adversary is None:
+        return
+    cast = reading.cast
+    ego = reading.facts.get("ego_maneuver")
+    turn = {
+        EgoManeuver.TURN_RIGHT.value: RelativePosition.ROADSIDE_RIGHT,
+        EgoManeuver.TURN_LEFT.value: RelativePosition.ROADSIDE_LEFT,
+    }.get(ego.value if ego else "")
+    walker = adversary.cls in ("Pedestrian", "Bicycle")
+    for start, end in words_of(cast, adversary):
+        words = cast.text[start:end]
+        if turn is not None and walker:
+            far = _FAR_CORNER.search(words)
+            exit_words = far or _EXIT_STREET.search(words) or _exit_street_named(cast, words)
+            if exit_words is not None and (far or _CROSSES.search(words)):
+                detail = StartDetail.EXIT_FAR_CORNER if far else StartDetail.EXIT_CROSSING
+                quote = exit_words.group(0)
+                reading.facts["start_detail"] = GroundedFact(
+                    name="start_detail", value=detail.value, source=FactSource.TEXT, quote=quote
+                )
+                told = reading.facts.get("spawn_position")
+                if told is None or told.quote is None or told.quote.lower() in quote.lower():
+                    reading.facts["spawn_position"] = GroundedFact(
+                        name="spawn_position",
+                        value=turn.value,
+                        source=FactSource.TEXT,
+                        quote=quote,
+                    )
+                return
+        behind = _FROM_BEHIND.search(cast.text[start : end + 40])
+        if behind is not None and behind.end() <= len(words):
+            reading.facts["start_detail"] = GroundedFact(
+                name="start_detail",
+                value=StartDetail.FROM_BEHIND.value,
+                source=FactSource.TEXT,
+                quote=behind.group(0),
+            )
+            return
+
+
 _STATIONARY = re.compile(
     r"\b(?:parked|double[- ]parked|stalled|broken[- ]down|stationary|abandoned|"
     r"(?:is |was |sits |stands |standing )?stopped|sits|lies|lying|standing still|"
@@ -521,5 +618,6 @@ def read_description(description: str, adversary_quote: str | None = None) -> Re
         if stationary is not None:
             reading.facts["adversary_stationary"] = stationary
     read_maneuvers(reading)
+    read_start_detail(reading)
     read_ego_stopped(reading)
     return reading

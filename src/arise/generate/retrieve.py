@@ -33,6 +33,7 @@ from arise.vocabulary import (
     EgoManeuver,
     RelativePosition,
     RoadType,
+    StartDetail,
 )
 
 ROAD_FEATURES: dict[RoadType, tuple[str, ...]] = {
@@ -188,8 +189,16 @@ class Fit(IntEnum):
 
 
 def pair_approach(geometry: Entry, spawn: Entry) -> Approach | None:
-    """Where this pair starts the adversary: the spawn says, or a spawn on the geometry's
-    conflict route comes from the side the geometry states."""
+    """Where this pair starts the adversary: the spawn says (on the street a turning ego
+    enters: the side the geometry's ego turns to), or a spawn on the geometry's conflict
+    route comes from the side the geometry states."""
+    if spawn.approach is Approach.TURN_SIDE:
+        tags = set(geometry.tags)
+        if "right_turn" in tags:
+            return Approach.ROADSIDE_RIGHT
+        if tags & {"left_turn", "unprotected_left_turn"}:
+            return Approach.ROADSIDE_LEFT
+        return None
     if spawn.approach is not None:
         return spawn.approach
     return geometry.approach if CONFLICT_ROUTE in spawn.needs else None
@@ -219,6 +228,28 @@ def maneuver_fit(wanted: AdversaryManeuver, maneuver: AdversaryManeuver | None) 
     if maneuver is None:
         return Fit.UNSPECIFIC
     return Fit.EXACT if maneuver is wanted else Fit.CONTRADICTS
+
+
+#: Spawn tags that say a start detail (`StartDetail`) of the text.
+DETAIL_TAGS: dict[StartDetail, frozenset[str]] = {
+    StartDetail.FROM_BEHIND: frozenset({"behind", "rear"}),
+    StartDetail.EXIT_CROSSING: frozenset({"exit_road"}),
+    StartDetail.EXIT_FAR_CORNER: frozenset({"far_corner"}),
+}
+
+
+def _detail_tags(spec: ScenarioSpec) -> frozenset[str]:
+    """The spawn tags the spec's start detail asks for; "from behind" only sorts the lanes
+    beside the ego (behind in the ego's own lane is a position of its own)."""
+    detail = spec.start_detail
+    if detail is None:
+        return frozenset()
+    if detail is StartDetail.FROM_BEHIND and spec.spawn_position not in (
+        RelativePosition.ADJACENT_LANE_LEFT,
+        RelativePosition.ADJACENT_LANE_RIGHT,
+    ):
+        return frozenset()
+    return DETAIL_TAGS[detail]
 
 
 def pair_fit(spec: ScenarioSpec, geometry: Entry, spawn: Entry) -> Fit:
@@ -404,6 +435,7 @@ def retrieve(
             spec, kb, retriever, maps, choose_map, result, geometries, query, topk
         )
     spawn_tags = set(SPAWN_TAGS[spec.spawn_position])
+    detail_tags = _detail_tags(spec)
     # In the lane a turning ego goes into ("just after the turn ... in the lane it enters").
     exit_lane = spec.ego_maneuver in (
         EgoManeuver.TURN_LEFT,
@@ -417,7 +449,9 @@ def retrieve(
             [e for e in kb.of(Component.SPAWN) if e.suits(adversary) and placeable(e)],
         ),
         lambda e: (
-            len(spawn_tags & set(e.tags)) + (10 if exit_lane and "exit_lane" in e.tags else 0)
+            len(spawn_tags & set(e.tags))
+            + (10 if exit_lane and "exit_lane" in e.tags else 0)
+            + (10 if detail_tags & set(e.tags) else 0)
         ),
     )
     behaviors = _ranked(

@@ -23,6 +23,7 @@ from arise.vocabulary import (
     RelativePosition,
     RoadType,
     Side,
+    StartDetail,
 )
 
 __all__ = [
@@ -125,6 +126,11 @@ class ScenarioSpec(BaseModel):
     )
     ego_lane_side: Side | None = Field(
         default=None, description="the side the ego changes lanes to, if the text says"
+    )
+    start_detail: StartDetail | None = Field(
+        default=None,
+        description="which end of the lane beside the ego, or which corner of the street a "
+        "turning ego enters, the adversary starts at, if the text says",
     )
     ego_stopped: bool = Field(
         default=False,
