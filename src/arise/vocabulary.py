@@ -120,6 +120,7 @@ MAP_FEATURES: tuple[str, ...] = (
     "signalized",
     "highway",
     "curve",
+    "merge",  # an on-ramp whose lane joins the rightmost lane of a multi-lane road
 )
 
 
