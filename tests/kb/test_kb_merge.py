@@ -13,7 +13,8 @@ import pytest
 from scenic.core.vectors import Vector
 from scenic.domains.driving.roads import Lane, Maneuver, Network
 
-from arise.generate.conformity import find_adversary
+from arise.generate.assemble import assemble
+from arise.generate.conformity import check_conformity, find_adversary
 from arise.generate.retrieve import retrieve
 from arise.generate.spec import ExtractionAnswer, ScenarioSpec
 from arise.kb.compose import compose, pick_map
@@ -183,9 +184,11 @@ def test_the_merge_entries_run_on_town04(
     _check(ego_merging, merge_pool, 1, map_dir=str(carla_maps))
 
 
-def _spec(road: RoadType, maneuver: str, position: RelativePosition, words: str) -> ScenarioSpec:
+def _spec(
+    road: RoadType, maneuver: str, position: RelativePosition, words: str, adversary: str = "car"
+) -> ScenarioSpec:
     return ScenarioSpec(
-        adversary_type="car",
+        adversary_type=adversary,
         behavior=words,
         road_type=road,
         ego_maneuver=maneuver,
@@ -210,6 +213,29 @@ def test_a_merge_spec_retrieves_the_merge_entries(
     chosen = {e.id for e in retrieve(spec, kb, BM25Retriever(kb), maps, words).chosen_entries()}
     assert "geometry.highway_ego_merges_from_ramp" in chosen
     assert "spawn.merge_target_lane_beside_left" in chosen
+
+
+@pytest.mark.slow
+def test_a_merge_spec_runs_end_to_end_and_conforms(
+    kb: KnowledgeBase, maps: dict[str, frozenset[str]], merge_pool: WorkerPool
+) -> None:
+    """Retrieved, assembled and run: the trace shows the merge, and the semantic gate's
+    road check accepts it on arise_merge (not on a map without an on-ramp)."""
+    words = "a motorcycle merging from the on-ramp cut into the AV's lane"
+    spec = _spec(
+        RoadType.MERGE, "go_straight", RelativePosition.ADJACENT_LANE_RIGHT, words, "motorcycle"
+    )
+    retrieval = retrieve(spec, kb, BM25Retriever(kb), maps, words)
+    draft = assemble(retrieval, "Motorcycle", spec.behavior, params={})
+    result = _check(draft.script, merge_pool, 3)
+    assert result.map is not None and result.map.name == "arise_merge"
+    _assert_merges_into_ego_lane(result)
+    road = {
+        c.name: c for c in check_conformity(spec, result.simulation, maps["arise_merge"]).checks
+    }
+    assert road["road_type"].ok, road["road_type"]
+    highway = check_conformity(spec, result.simulation, maps["arise_highway"]).checks
+    assert not next(c for c in highway if c.name == "road_type").ok
 
 
 def test_a_plain_highway_spec_never_gets_a_merge_entry(
