@@ -209,10 +209,12 @@ def test_a_merge_spec_retrieves_the_merge_entries(
     assert chosen & {"behavior.merge_from_ramp", "behavior.merge_from_ramp_and_brake"}
 
     words = "the AV entered the freeway from the ramp; a car in the right lane did not let it in"
-    spec = _spec(RoadType.MERGE, "change_lane", RelativePosition.ADJACENT_LANE_LEFT, words)
-    chosen = {e.id for e in retrieve(spec, kb, BM25Retriever(kb), maps, words).chosen_entries()}
-    assert "geometry.highway_ego_merges_from_ramp" in chosen
-    assert "spawn.merge_target_lane_beside_left" in chosen
+    for maneuver in ("go_straight", "change_lane"):
+        spec = _spec(RoadType.MERGE, maneuver, RelativePosition.ADJACENT_LANE_LEFT, words)
+        retrieval = retrieve(spec, kb, BM25Retriever(kb), maps, words)
+        chosen = {e.id for e in retrieval.chosen_entries()}
+        assert "geometry.highway_ego_merges_from_ramp" in chosen, maneuver
+        assert "spawn.merge_target_lane_beside_left" in chosen, maneuver
 
 
 @pytest.mark.slow
