@@ -81,6 +81,7 @@ class RoadType(StrEnum):
     INTERSECTION = "intersection"
     T_JUNCTION = "t_junction"
     HIGHWAY = "highway"
+    MERGE = "merge"  # a highway where an on-ramp joins (read from words, not asked of the model)
 
 
 class RelativePosition(StrEnum):  # where the adversary starts, seen from the ego
@@ -129,6 +130,7 @@ MAP_FEATURES: tuple[str, ...] = (
     "signalized",
     "highway",
     "curve",
+    "merge",  # an on-ramp whose lane joins the rightmost lane of a multi-lane road
 )
 
 

@@ -48,7 +48,13 @@ def networks(regenerated: Path) -> dict[str, Network]:
 
 
 def test_catalogue_matches_generator() -> None:
-    assert NAMES == ["arise_straight", "arise_intersection4", "arise_tjunction", "arise_highway"]
+    assert NAMES == [
+        "arise_straight",
+        "arise_intersection4",
+        "arise_tjunction",
+        "arise_highway",
+        "arise_merge",
+    ]
     assert generate.catalogue() == CATALOGUE
     for entry in CATALOGUE:
         assert set(entry) == {
@@ -146,6 +152,65 @@ def test_straight_and_highway_lanes(networks: dict[str, Network]) -> None:
     assert features.total_turn(road) == pytest.approx(math.degrees(175 / 500), abs=1)
 
 
+def test_merge_ramp_joins_the_rightmost_lane(networks: dict[str, Network]) -> None:
+    network = networks["arise_merge"]
+    (zone,) = network.intersections
+    assert features.classify_intersection(zone) == "other"
+    ((ramp, through),) = features.on_ramp_merges(zone)
+    assert len(ramp.startLane.group.lanes) == 1
+    assert len(through.startLane.group.lanes) == generate.MERGE_LANES
+    # The lane both maneuvers end in is the motorway's rightmost (curb-side) lane.
+    assert ramp.endLane is through.endLane is through.endLane.group.lanes[0]
+    assert ramp.endLane.sections[0]._laneToRight is None
+    # Scenic links ramp -> connecting lane -> motorway lane, and calls it straight,
+    # so FollowLaneBehavior keeps its speed through the merge zone.
+    assert ramp.type is ManeuverType.STRAIGHT
+    assert ramp.startLane.maneuvers == (ramp,)
+    assert ramp.connectingLane.predecessor is ramp.startLane
+    assert ramp.connectingLane.successor is ramp.endLane
+    # The lanes line up: each connecting lane starts where its lane ends and ends where
+    # the next one starts (within the polyline's sampling).
+    for maneuver in zone.maneuvers:
+        lane = maneuver.connectingLane
+        assert (maneuver.startLane.centerline[-1] - lane.centerline[0]).norm() < 0.05
+        assert (lane.centerline[-1] - maneuver.endLane.centerline[0]).norm() < 0.05
+    # Where the ramp runs beside the motorway, the point is on the ramp lane, and the
+    # direction of travel there is the motorway's.
+    beside = ramp.connectingLane.centerline.pointAlongBy(generate.MERGE_PARALLEL / 2)
+    assert network.laneAt(beside) is ramp.connectingLane
+    assert network.nominalDirectionsAt(beside)[0] == pytest.approx(
+        network.nominalDirectionsAt(through.startLane.centerline[-1])[0], abs=0.02
+    )
+
+
+def test_merge_map_traffic_follows_the_ramp_into_the_motorway(shipped: Path) -> None:
+    """FollowLaneBehavior from the ramp, in Scenic's Newtonian simulator, ends up in the
+    motorway's rightmost lane at speed."""
+    from scenic.simulators.newtonian import NewtonianSimulator
+
+    path = shipped / "ramp_follow.scenic"
+    path.write_text(
+        "param map = localPath('arise_merge.xodr')\n"
+        "param render = 0\n"
+        "model scenic.simulators.newtonian.driving_model\n"
+        "rampLane = [lane for lane in network.lanes if len(lane.group.lanes) == 1][0]\n"
+        "ego = new Car at rampLane.centerline.pointAlongBy(60), "
+        "with behavior FollowLaneBehavior(target_speed=15)\n"
+    )
+    scenario = scenic.scenarioFromFile(str(path), mode2D=True)
+    scene, _ = scenario.generate(maxIterations=20)
+    network = scene.workspace.network
+    result = NewtonianSimulator().simulate(scene, maxSteps=200, maxIterations=1)
+    assert result is not None
+    positions = [state[0] for state in result.trajectory]
+    start, end = network.laneAt(positions[0]), network.laneAt(positions[-1])
+    (ramp, through) = features.on_ramp_merges(network.intersections[0])[0]
+    assert start is ramp.startLane
+    assert end is through.endLane
+    # 20 s at up to 15 m/s; slowing to a turning speed through the zone would lose ~40 m.
+    assert positions[-1].x - positions[0].x > 220
+
+
 # CARLA-style scenes. The model line and params are the CARLA ones; the test
 # compiles them against Scenic's generic driving model (map content only).
 HEADER = """\
@@ -193,6 +258,12 @@ right = new Car on ego.laneSection.slowerLane.centerline
 require (distance from ego to left) > 6 and (distance from ego to right) > 6
 lead = new Car following roadDirection from ego for Range(15, 40)
 """,
+    "arise_merge": """
+zone = network.intersections[0]
+ramp = Uniform(*[m for m in zone.maneuvers if len(m.startLane.group.lanes) == 1])
+ego = new Car following roadDirection from ramp.startLane.centerline[-1] for Range(-60, -20)
+through = new Car on ramp.endLane.centerline
+""",
 }
 
 
@@ -216,7 +287,7 @@ def test_feature_scene_samples(shipped: Path, name: str) -> None:
     ego = scene.egoObject
     assert network.laneAt(ego.position) is not None
     walkers = [o for o in scene.objects if type(o).__name__ == "Pedestrian"]
-    if name == "arise_highway":
+    if name in ("arise_highway", "arise_merge"):
         assert not walkers
     else:
         assert len(walkers) == 1
@@ -244,6 +315,11 @@ def test_carla_towns_catalogue() -> None:
         assert entry["file"] == f"{entry['name']}.xodr"
     assert "highway" in towns["Town04"]["features"]
     assert towns["Town01"]["lanes_per_direction"] == 1
+    # Town04 and Town06 have on-ramps, as our arise_merge has; the town maps do not.
+    for name in ("Town04", "Town06"):
+        assert "merge" in towns[name]["features"]
+        assert towns[name]["stats"]["on_ramp_merges"] >= 3
+    assert not {"merge"} & set(towns["Town01"]["features"] + towns["Town10HD"]["features"])
 
 
 @pytest.mark.carla_towns

@@ -475,6 +475,15 @@ def _road_check(
             f"{observed}, {'highway' if on_highway else 'no highway'} map",
             on_highway and ego.intersection_steps == 0,
         )
+    if road is RoadType.MERGE:
+        # The merge zone is a junction: the ego or the adversary drives through it.
+        on_ramp_map = not map_features or "merge" in map_features
+        return ConformityCheck(
+            "road_type",
+            road.value,
+            f"{observed}, {'on-ramp' if on_ramp_map else 'no on-ramp'} map",
+            on_ramp_map and junction_steps > 0,
+        )
     return ConformityCheck("road_type", road.value, observed, ego.intersection_steps == 0)
 
 

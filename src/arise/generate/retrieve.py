@@ -41,6 +41,7 @@ ROAD_FEATURES: dict[RoadType, tuple[str, ...]] = {
     RoadType.INTERSECTION: ("intersection4",),
     RoadType.T_JUNCTION: ("tjunction",),
     RoadType.HIGHWAY: ("highway",),
+    RoadType.MERGE: ("merge",),
 }
 JUNCTION_FEATURES = {"intersection4", "tjunction"}
 #: Words that place the adversary in the lane a turning ego goes into.
@@ -297,6 +298,8 @@ def _geometry_pool(
 
     def road_fits(entry: Entry) -> bool:
         features = set(entry.map_features)
+        if "merge" in features and spec.road_type is not RoadType.MERGE:
+            return False  # an on-ramp scene only where the text has one
         if spec.road_type is RoadType.STRAIGHT:
             return not features & (JUNCTION_FEATURES | {"highway"})
         return needed <= features

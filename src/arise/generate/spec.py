@@ -8,6 +8,7 @@ at the boundary instead of deep in the assembler.
 from __future__ import annotations
 
 from enum import StrEnum
+from typing import Any
 
 from pydantic import BaseModel, Field, field_validator
 
@@ -84,6 +85,10 @@ class Actor(BaseModel):
         return self.scenic_class in ACTOR_CLASSES
 
 
+#: Road types that only the description's words set (see ExtractionAnswer.model_json_schema).
+WORDS_ONLY_ROADS = frozenset({RoadType.MERGE.value})
+
+
 class ExtractionAnswer(BaseModel):
     """What the model is asked for: the parts of the description, in its own words."""
 
@@ -100,6 +105,19 @@ class ExtractionAnswer(BaseModel):
         description="the exact words naming each other road user or object, one per item",
     )
     requirements: list[Requirement] = Field(default_factory=list)
+
+    @classmethod
+    def model_json_schema(cls, *args: Any, **kwargs: Any) -> dict[str, Any]:
+        """The schema the model answers in, without the road types it is never asked for.
+
+        Why: `merge` is read from the description's words ("on-ramp", "merging"), not from
+        the model; offering it would also change every recorded extraction request.
+        """
+        schema = super().model_json_schema(*args, **kwargs)
+        road = schema.get("$defs", {}).get(RoadType.__name__)
+        if road is not None:
+            road["enum"] = [value for value in road["enum"] if value not in WORDS_ONLY_ROADS]
+        return schema
 
 
 class ScenarioSpec(BaseModel):

@@ -24,7 +24,7 @@ from collections.abc import Iterable, Sequence
 from pathlib import Path
 from typing import Any
 
-from scenic.domains.driving.roads import Intersection, ManeuverType, Network, Road
+from scenic.domains.driving.roads import Intersection, Maneuver, ManeuverType, Network, Road
 from shapely.geometry import Point
 
 from arise.vocabulary import MAP_FEATURES
@@ -46,6 +46,9 @@ CURVE_MIN_TURN_DEG = 15.0
 HIGHWAY_MIN_LANES = 3
 #: ...adding up to at least this length.
 HIGHWAY_MIN_LENGTH_M = 400.0
+#: An on-ramp meets the through lanes at most this steeply (a turn from a side road
+#: into a multi-lane road meets them at about 90 degrees).
+MERGE_MAX_ANGLE_DEG = 60.0
 
 DATA_DIR = Path(__file__).with_name("data")
 #: The CARLA towns: $ARISE_CARLA_MAPS, else ../shared/maps/CARLA beside the repo.
@@ -221,6 +224,44 @@ def _cluster_angles(angles: Iterable[float], tolerance: float) -> list[float]:
     return [cluster[0] for cluster in clusters]
 
 
+def _start_heading(maneuver: Maneuver) -> float:
+    """Heading (radians) at the start of the maneuver's connecting lane."""
+    (x0, y0), (x1, y1) = _polyline(maneuver.connectingLane)[:2]
+    return math.atan2(y1 - y0, x1 - x0)
+
+
+def on_ramp_merges(intersection: Intersection) -> list[tuple[Maneuver, Maneuver]]:
+    """(ramp, through) maneuvers of a junction where an on-ramp joins a multi-lane road.
+
+    Read off the lanes, since OpenDRIVE has no notion of a ramp: the through maneuver goes
+    straight on a road with several lanes that way; the ramp's comes from another road with
+    fewer lanes, at a shallow angle, and ends in the same lane, which is the rightmost one.
+    CARLA's towns and our arise_merge build their on-ramps like this.
+    """
+    found = []
+    limit = math.radians(MERGE_MAX_ANGLE_DEG)
+    for through in intersection.maneuvers:
+        lanes = len(through.startLane.group.lanes)
+        end = through.endLane.sections[0]
+        if (
+            through.type is not ManeuverType.STRAIGHT
+            or through.connectingLane is None
+            or lanes < 2
+            or end._laneToRight is not None
+        ):
+            continue
+        for ramp in intersection.maneuvers:
+            if (
+                ramp.endLane is through.endLane
+                and ramp.connectingLane is not None
+                and ramp.startLane.road is not through.startLane.road
+                and len(ramp.startLane.group.lanes) < lanes
+                and _angle_diff(_start_heading(ramp), _start_heading(through)) <= limit
+            ):
+                found.append((ramp, through))
+    return found
+
+
 def classify_intersection(intersection: Intersection) -> str:
     """'intersection4', 'tjunction' or 'other' (merges, splits, dead ends)."""
     turns = {m.type for m in intersection.maneuvers}
@@ -250,6 +291,7 @@ def describe_network(network: Network) -> dict[str, Any]:
     straight = max((longest_straight(r) for r in roads), default=0.0)
     turn = max((total_turn(r) for r in roads), default=0.0)
     sidewalks = len(network.sidewalks) > 0
+    merges = sum(len(on_ramp_merges(i)) for i in network.intersections)
 
     present = {
         "straight": straight >= STRAIGHT_MIN_LENGTH_M,
@@ -260,6 +302,7 @@ def describe_network(network: Network) -> dict[str, Any]:
         "signalized": bool(traffic_lights),
         "highway": highway_length >= HIGHWAY_MIN_LENGTH_M,
         "curve": turn >= CURVE_MIN_TURN_DEG,
+        "merge": merges > 0,
         "roundabout": False,  # Scenic's network has no notion of it: never measured
     }
     return {
@@ -279,6 +322,7 @@ def describe_network(network: Network) -> dict[str, Any]:
             "longest_straight_m": round(straight, 1),
             "max_road_turn_deg": round(turn, 1),
             "highway_length_m": round(highway_length, 1),
+            "on_ramp_merges": merges,
         },
     }
 

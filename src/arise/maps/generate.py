@@ -61,18 +61,23 @@ def _lanes(
     n_right: int,
     outer: Sequence[Outer] = (),
     marks: bool = True,
+    right_outer: Sequence[Outer] | None = None,
 ) -> Any:
     """Lanes of a road with one lane section.
 
     Driving lanes come first from the centre outwards (ids 1..n_left on the
     left, -1..-n_right on the right), then the ``outer`` lanes on each side
-    that has driving lanes.
+    that has driving lanes (``right_outer``, when given, on the right side).
     """
     center = xodr.Lane()
     if marks and n_left and n_right:
         center.add_roadmark(xodr.std_roadmark_solid())
     section = xodr.LaneSection(0, center)
-    for count, add in ((n_left, section.add_left_lane), (n_right, section.add_right_lane)):
+    sides = (
+        (n_left, section.add_left_lane, outer),
+        (n_right, section.add_right_lane, outer if right_outer is None else right_outer),
+    )
+    for count, add, beyond in sides:
         for i in range(count):
             last = i == count - 1
             mark = None
@@ -80,7 +85,7 @@ def _lanes(
                 mark = xodr.std_roadmark_solid() if last else xodr.std_roadmark_broken()
             add(xodr.standard_lane(LANE_WIDTH, rm=mark))
         if count:
-            for lane_type, width in outer:
+            for lane_type, width in beyond:
                 add(xodr.Lane(lane_type, a=width))
     lanes = xodr.Lanes()
     lanes.add_lanesection(section)
@@ -357,6 +362,155 @@ def build_highway() -> Any:
     return odr
 
 
+#: The on-ramp map: motorway lanes per direction, lengths (m) of the motorway before and
+#: after the merge zone, and of the merge zone (a junction, as in CARLA's towns).
+MERGE_LANES = 4
+MERGE_UPSTREAM = 320.0
+MERGE_DOWNSTREAM = 320.0
+MERGE_ZONE = 70.0
+#: In the merge zone the ramp lane runs beside the rightmost lane for this long (the
+#: acceleration lane), then shifts one lane width to the left over the rest.
+MERGE_PARALLEL = 20.0
+#: The ramp: a straight run at this angle to the motorway, then a bend onto its heading.
+RAMP_ANGLE_DEG = 10.0
+RAMP_STRAIGHT = 110.0
+RAMP_RADIUS = 300.0
+
+
+def _straight_connection(
+    road_id: int,
+    start: tuple[float, float, float],
+    length: float,
+    incoming: int,
+    outgoing: int,
+    lane_in: int,
+    lane_out: int,
+    junction_id: int,
+) -> tuple[Any, Any]:
+    """A one-lane connecting road and its junction connection.
+
+    ``start`` is the point of the lane's left edge (the road's reference line), so
+    the lane's centre lines up with the lanes it connects.
+    """
+    lanes = _lanes(0, 1, marks=False)
+    lane = lanes.lanesections[0].rightlanes[0]
+    lane.add_link("predecessor", lane_in)
+    lane.add_link("successor", lane_out)
+    road = _road(road_id, start, [xodr.Line(length)], lanes, junction=junction_id)
+    return road, (incoming, outgoing, lane_in)
+
+
+def build_merge() -> Any:
+    """Motorway, 4 lanes per direction, with an on-ramp joining the rightmost lane.
+
+    Why a junction: an OpenDRIVE road end links to one road only, so a ramp that joins
+    a through road meets it in a junction, as CARLA's Town04 and Town06 on-ramps do:
+    the ramp's connecting lane and the rightmost through lane end in the same lane.
+    Here the ramp's connecting lane first runs beside the rightmost lane (an
+    acceleration lane), then shifts into it with two arcs; it starts and ends parallel
+    to the motorway, so Scenic counts the merge as a straight maneuver and
+    FollowLaneBehavior keeps its speed through it.
+    """
+    _reset_signal_ids()
+    odr = xodr.OpenDrive("arise_merge")
+    junction_id = 1
+    n, w = MERGE_LANES, LANE_WIDTH
+    x_zone, x_after = MERGE_UPSTREAM, MERGE_UPSTREAM + MERGE_ZONE
+    shoulder = [(xodr.LaneType.shoulder, SHOULDER_WIDTH)]
+    # No shoulder on the right before the merge: the ramp arrives there.
+    before = _road(
+        1,
+        (0.0, 0.0, 0.0),
+        [xodr.Line(MERGE_UPSTREAM)],
+        _lanes(n, n, shoulder, right_outer=()),
+        name="motorway_before_ramp",
+    )
+    before.add_successor(xodr.ElementType.junction, junction_id)
+    after = _road(
+        2,
+        (x_after, 0.0, 0.0),
+        [xodr.Line(MERGE_DOWNSTREAM)],
+        _lanes(n, n, shoulder),
+        name="motorway_after_ramp",
+    )
+    after.add_predecessor(xodr.ElementType.junction, junction_id)
+    # The ramp's single lane ends beside the rightmost lane, its left edge on the
+    # motorway's right edge; work back from there to where the ramp starts.
+    angle = math.radians(RAMP_ANGLE_DEG)
+    edge = -n * w
+    ramp_start = (
+        x_zone - RAMP_RADIUS * math.sin(angle) - RAMP_STRAIGHT * math.cos(angle),
+        edge - RAMP_RADIUS * (1 - math.cos(angle)) - RAMP_STRAIGHT * math.sin(angle),
+        angle,
+    )
+    ramp = _road(
+        3,
+        ramp_start,
+        [xodr.Line(RAMP_STRAIGHT), xodr.Arc(-1 / RAMP_RADIUS, angle=angle)],
+        _lanes(0, 1),
+        name="on_ramp",
+    )
+    ramp.add_successor(xodr.ElementType.junction, junction_id)
+    for road in (before, after, ramp):
+        odr.add_road(road)
+
+    junction = xodr.Junction("merge_zone", junction_id)
+    connections: list[tuple[Any, tuple[int, int, int]]] = []
+    road_id = 100
+    for rank in range(1, n + 1):
+        # Through lanes both ways: -rank drives +x into road 2, +rank drives -x into road 1.
+        connections.append(
+            _straight_connection(
+                road_id, (x_zone, -(rank - 1) * w, 0.0), MERGE_ZONE, 1, 2, -rank, -rank, 1
+            )
+        )
+        connections.append(
+            _straight_connection(
+                road_id + 1, (x_after, (rank - 1) * w, math.pi), MERGE_ZONE, 2, 1, rank, rank, 1
+            )
+        )
+        road_id += 2
+    # The ramp's connecting lane: beside the rightmost lane, then into it.
+    shift = MERGE_ZONE - MERGE_PARALLEL
+    half_turn = 2 * math.atan2(w, shift)  # each arc turns by this much
+    radius = shift / (2 * math.sin(half_turn))
+    lanes = _lanes(0, 1, marks=False)
+    lane = lanes.lanesections[0].rightlanes[0]
+    lane.add_link("predecessor", -1)
+    lane.add_link("successor", -n)
+    merge = _road(
+        road_id,
+        (x_zone, edge, 0.0),
+        [
+            xodr.Line(MERGE_PARALLEL),
+            xodr.Arc(1 / radius, angle=half_turn),
+            xodr.Arc(-1 / radius, angle=half_turn),
+        ],
+        lanes,
+        junction=junction_id,
+    )
+    connections.append((merge, (3, 2, -1)))
+    for road, (incoming, outgoing, lane_in) in connections:
+        forward = incoming in (1, 3)  # roads 1 and 3 end at the zone, road 2 starts there
+        road.add_predecessor(
+            xodr.ElementType.road,
+            incoming,
+            contact_point=xodr.ContactPoint.end if forward else xodr.ContactPoint.start,
+        )
+        road.add_successor(
+            xodr.ElementType.road,
+            outgoing,
+            contact_point=xodr.ContactPoint.start if outgoing == 2 else xodr.ContactPoint.end,
+        )
+        odr.add_road(road)
+        connection = xodr.Connection(incoming, road.id, xodr.ContactPoint.start)
+        connection.add_lanelink(lane_in, -1)
+        junction.add_connection(connection)
+    odr.add_junction(junction)
+    odr.adjust_startpoints()
+    return odr
+
+
 @dataclass(frozen=True)
 class MapSpec:
     """What a shipped map is and what it is advertised to contain."""
@@ -428,6 +582,16 @@ MAPS: dict[str, MapSpec] = {
             False,
             False,
             build_highway,
+        ),
+        MapSpec(
+            "arise_merge",
+            "Motorway, 710 m, 4 lanes per direction with shoulders, and a 160 m one-lane "
+            "on-ramp whose lane runs beside the rightmost lane, then merges into it.",
+            ("straight", "multilane", "highway", "merge"),
+            4,
+            False,
+            False,
+            build_merge,
         ),
     )
 }
