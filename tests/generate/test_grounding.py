@@ -418,3 +418,23 @@ def test_signalling_is_no_traffic_signal_and_behind_a_van_is_no_rear() -> None:
     child = "On a straight street, a child runs out from behind a parked van on the right."
     position = read_description(child, "a child").facts.get("spawn_position")
     assert position is None or position.value != "behind_same_lane"
+
+
+@pytest.mark.parametrize(
+    ("text", "ego_on_ramp"),
+    [
+        (
+            "On the freeway, a motorcycle entering from the on-ramp to its right merged into "
+            "the AV's lane ahead of it.",
+            False,
+        ),
+        ("The ego merges from the on-ramp onto the motorway in front of a fast truck.", True),
+        ("The AV entered the freeway from the ramp; a car in the right lane sped up.", True),
+    ],
+)
+def test_an_on_ramp_makes_a_merge_and_the_reader_says_who_is_on_it(
+    text: str, ego_on_ramp: bool
+) -> None:
+    spec = ground(text, answer(road_type="highway")).spec
+    assert spec.road_type.value == "merge"
+    assert spec.ego_on_ramp is ego_on_ramp

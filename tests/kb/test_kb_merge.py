@@ -15,6 +15,7 @@ from scenic.domains.driving.roads import Lane, Maneuver, Network
 
 from arise.generate.assemble import assemble
 from arise.generate.conformity import check_conformity, find_adversary
+from arise.generate.readers import read_description
 from arise.generate.retrieve import retrieve
 from arise.generate.spec import ExtractionAnswer, ScenarioSpec
 from arise.kb.compose import compose, pick_map
@@ -211,6 +212,12 @@ def test_a_merge_spec_retrieves_the_merge_entries(
     words = "the AV entered the freeway from the ramp; a car in the right lane did not let it in"
     for maneuver in ("go_straight", "change_lane"):
         spec = _spec(RoadType.MERGE, maneuver, RelativePosition.ADJACENT_LANE_LEFT, words)
+        # The reader puts the ego on the ramp ("the AV entered the freeway from the ramp").
+        assert (
+            read_description(words).facts["ego_on_ramp"].quote
+            == "entered the freeway from the ramp"
+        )
+        spec = spec.model_copy(update={"ego_on_ramp": True})
         retrieval = retrieve(spec, kb, BM25Retriever(kb), maps, words)
         chosen = {e.id for e in retrieval.chosen_entries()}
         assert "geometry.highway_ego_merges_from_ramp" in chosen, maneuver

@@ -795,7 +795,8 @@ def _road_verdict(
     elif features is None:  # highway and multi-lane are properties of the map
         match = None
     elif road is Road.HIGHWAY:
-        match = "highway" in features and ego.intersection_steps == 0
+        # A motorway's only junction is where an on-ramp joins it (the merge zone).
+        match = "highway" in features and (ego.intersection_steps == 0 or "merge" in features)
     else:
         match = bool({"multilane", "highway"} & features)
     return Verdict(FactKind.ROAD, "", expected, observed, match)

@@ -44,6 +44,13 @@ from arise.vocabulary import (
 # -- the grounded spec ----------------------------------------------------------------------
 
 _ROAD_WORDS: tuple[tuple[RoadType, str], ...] = (
+    # An on-ramp joining the road (a merge is also a highway, so it is read first).
+    (
+        RoadType.MERGE,
+        r"on-?ramps?|entry ramp|entrance ramp|slip road|acceleration lane|merging lane|"
+        r"(?:joins?|joining|enter\w*) the (?:highway|motorway|freeway|expressway|interstate) "
+        r"from",
+    ),
     (RoadType.HIGHWAY, r"highway|motorway|freeway|expressway|interstate"),
     (RoadType.T_JUNCTION, r"t-junction|t junction|t-intersection|t intersection|side road"),
     (
@@ -284,6 +291,7 @@ def ground(description: str, answer: ExtractionAnswer) -> Grounded:
         adversary_maneuver=AdversaryManeuver(facts["adversary_maneuver"].value),
         adversary_stationary="adversary_stationary" in facts,
         ego_stopped="ego_stopped" in facts,
+        ego_on_ramp="ego_on_ramp" in facts,
         start_detail=(
             StartDetail(facts["start_detail"].value) if "start_detail" in facts else None
         ),

@@ -525,6 +525,25 @@ _EGO_HELD = re.compile(
 )
 
 
+# The ego itself comes up the on-ramp ("the ego merges from the on-ramp onto the freeway").
+_ON_RAMP = re.compile(
+    r"\b(?:merg\w*|enter\w*|join\w*|accelerat\w*|driv\w*|travel\w*|com\w*|is|was)\b"
+    r"(?: [\w-]+){0,4}? (?:from|on|up|along|down|via|in) (?:the |an |a )?(?:on-?ramp|entry ramp|"
+    r"entrance ramp|ramp|slip road|acceleration lane)\b",
+    re.I,
+)
+
+
+def read_ego_on_ramp(reading: Reading) -> None:
+    """Whether the ego is the one coming up the on-ramp, from words whose subject it is."""
+    for match in _ON_RAMP.finditer(reading.cast.text):
+        if _subject(reading.cast, match.start()) == "ego":
+            reading.facts["ego_on_ramp"] = GroundedFact(
+                name="ego_on_ramp", value="true", source=FactSource.TEXT, quote=match.group(0)
+            )
+            return
+
+
 def read_ego_stopped(reading: Reading) -> None:
     """Whether the ego stands still for the whole scene, from words whose subject it is."""
     for match in _EGO_HELD.finditer(reading.cast.text):
@@ -620,4 +639,5 @@ def read_description(description: str, adversary_quote: str | None = None) -> Re
     read_maneuvers(reading)
     read_start_detail(reading)
     read_ego_stopped(reading)
+    read_ego_on_ramp(reading)
     return reading

@@ -51,6 +51,8 @@ _EXIT_WORDS = re.compile(
 )
 #: A geometry whose ego changes lanes (tagged also ego_changes_left or _right).
 EGO_LANE_CHANGE_TAG = "ego_lane_change"
+#: A geometry whose ego comes up the on-ramp; only an ego the text puts there gets one.
+EGO_ON_RAMP_TAG = "ego_on_ramp"
 #: A geometry whose ego stands still for the whole scene; only a stopped ego gets one.
 EGO_STOPPED_TAG = "ego_stopped"
 MANEUVER_TAGS: dict[EgoManeuver, tuple[str, ...]] = {
@@ -306,6 +308,8 @@ def _geometry_pool(
 
     def maneuver_fits(entry: Entry) -> bool:
         tags = set(entry.tags) | set(entry.id.split(".")[-1].split("_"))
+        if spec.road_type is RoadType.MERGE and (EGO_ON_RAMP_TAG in tags) != spec.ego_on_ramp:
+            return False  # the ego on the ramp only when the text puts it there
         turns = {"left_turn", "right_turn", "unprotected_left_turn"}
         changes = EGO_LANE_CHANGE_TAG in tags
         if spec.ego_maneuver is EgoManeuver.GO_STRAIGHT:

@@ -150,6 +150,9 @@ class ScenarioSpec(BaseModel):
         description="which end of the lane beside the ego, or which corner of the street a "
         "turning ego enters, the adversary starts at, if the text says",
     )
+    ego_on_ramp: bool = Field(
+        default=False, description="the text says the ego comes up an on-ramp and merges"
+    )
     ego_stopped: bool = Field(
         default=False,
         description="the text says the ego stands still (at a red light, in traffic)",
