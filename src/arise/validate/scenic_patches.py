@@ -245,4 +245,4 @@ def _verifai_weights_under_cross_entropy() -> None:
         original(self, low, high, weights)
         self.__dict__["low"], self.__dict__["high"] = low, high
 
-    external.VerifaiDiscreteRange.__init__ = keep_bounds  # type: ignore[method-assign]
+    external.VerifaiDiscreteRange.__init__ = keep_bounds
