@@ -16,7 +16,13 @@ from arise.evaluate.search.errors import SearchError
 from arise.evaluate.search.executor import Executor
 from arise.evaluate.search.objective import Objective
 from arise.evaluate.search.outputs import describe, write_outputs
-from arise.evaluate.search.runner import SearchConfig, SearchResult, resolve_script, run_search
+from arise.evaluate.search.runner import (
+    SEARCH_SPAWN_ATTEMPTS,
+    SearchConfig,
+    SearchResult,
+    resolve_script,
+    run_search,
+)
 from arise.evaluate.search.sampler import SamplerKind
 from arise.evaluate.search.store import SearchStore, TrialRecord
 from arise.validate import CheckOptions
@@ -84,6 +90,10 @@ def search_command(
     ] = None,
     steps: Annotated[int, typer.Option(help="Simulation steps per trial.")] = 300,
     timeout: Annotated[float, typer.Option(help="Seconds per trial before it is stopped.")] = 60.0,
+    spawn_attempts: Annotated[
+        int,
+        typer.Option(help="Scenes a trial may try before its values count as failed."),
+    ] = SEARCH_SPAWN_ATTEMPTS,
     map_dir: Annotated[
         str | None,
         typer.Option(envvar="ARISE_MAP_DIR", help="Folder of extra .xodr maps (CARLA towns)."),
@@ -101,7 +111,9 @@ def search_command(
     folder = out or (
         target / "search" if target.is_dir() else Path("out") / f"search-{script.stem}"
     )
-    check = CheckOptions(steps=steps, timeout=timeout, map_dir=map_dir)
+    check = CheckOptions(
+        steps=steps, timeout=timeout, map_dir=map_dir, spawn_attempts=spawn_attempts
+    )
     results: list[SearchResult] = []
     with SearchStore(folder / "search.sqlite") as store:
         for kind in samplers:

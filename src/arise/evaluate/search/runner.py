@@ -31,6 +31,10 @@ from arise.evaluate.search.store import SearchRow, SearchStore, TrialRecord
 from arise.validate import CheckOptions
 from arise.validate.script_info import read_script_info
 
+#: Scenes a trial may try before its values count as failed: a value that makes every
+#: simulation rejected would otherwise cost the validator's 15 tries (30-50 s) each time.
+SEARCH_SPAWN_ATTEMPTS = 3
+
 #: The score a failed trial is told to the sampler as, before any trial ran: as bad as
 #: no conflict at all (then: the worst score seen).
 FAILED_DISTANCE = 50.0
@@ -47,7 +51,9 @@ class SearchConfig:
     workers: int = 1
     executor: Executor = Executor.LOCAL
     seed: int = 0
-    check: CheckOptions = field(default_factory=CheckOptions)
+    check: CheckOptions = field(
+        default_factory=lambda: CheckOptions(spawn_attempts=SEARCH_SPAWN_ATTEMPTS)
+    )
     ray_address: str | None = None
 
 
@@ -118,6 +124,7 @@ def search_key(text: str, config: SearchConfig) -> str:
         "objective": config.objective.value,
         "seed": config.seed,
         "steps": config.check.steps,
+        "spawn_attempts": config.check.spawn_attempts,
         "simulator": config.check.simulator.value,
         "map_dir": config.check.map_dir,
     }
