@@ -29,6 +29,7 @@ from arise.errors import AriseError
 from arise.evaluate.cli import BENCH_HELP, REPORT_HELP, bench_command, report_command
 from arise.evaluate.judge_cli import JUDGE_HELP, judge_command
 from arise.evaluate.search.cli import SEARCH_HELP, search_command
+from arise.evaluate.search.critical import with_critical_search
 from arise.generate.cli import GENERATE_HELP, generate_command
 from arise.kb.cli import app as kb_app
 from arise.llm.cli import app as llm_app
@@ -103,7 +104,7 @@ app = typer.Typer(
     add_completion=False,
     pretty_exceptions_enable=False,
 )
-app.command("generate", help=GENERATE_HELP)(generate_command)
+app.command("generate", help=GENERATE_HELP)(with_critical_search(generate_command))
 app.command("check", help=CHECK_HELP)(check_command)
 app.command("bench", help=BENCH_HELP)(bench_command)
 app.command("report", help=REPORT_HELP)(report_command)
