@@ -96,15 +96,24 @@ def _mean(values: list[float]) -> str:
 def sampler_table(results: dict[SamplerKind, list[tuple[SearchResult, float]]], budget: int) -> str:
     lines = [
         "| sampler | scripts made critical | trials to first critical (mean over found; "
-        "median) | critical trials (mean share) | collisions found | mean best TTC (s) "
-        "| wall time of one search (mean s; all fresh) |",
-        "|---|---|---|---|---|---|---|",
+        "median) | critical trials (mean share) | scripts with a collision | trials to first "
+        "collision (mean over found) | collision trials (mean share) | mean best TTC (s) "
+        "| wall time of one search (mean s; fresh ones) |",
+        "|---|---|---|---|---|---|---|---|---|",
     ]
     for sampler, runs in results.items():
         found = [r.first_critical for r, _ in runs if r.first_critical is not None]
         made = len(found)
         share = [sum(t.outcome.critical for t in r.trials) / max(1, len(r.trials)) for r, _ in runs]
         collided = sum(any(t.outcome.collision for t in r.trials) for r, _ in runs)
+        first_collision = [
+            float(min(t.index for t in r.trials if t.outcome.collision) + 1)
+            for r, _ in runs
+            if any(t.outcome.collision for t in r.trials)
+        ]
+        contact = [
+            sum(t.outcome.collision for t in r.trials) / max(1, len(r.trials)) for r, _ in runs
+        ]
         best = [
             r.best.outcome.value for r, _ in runs if r.best and r.best.outcome.value is not None
         ]
@@ -114,6 +123,7 @@ def sampler_table(results: dict[SamplerKind, list[tuple[SearchResult, float]]], 
             f"| {sampler.value} | {made}/{len(runs)} ({made / max(1, len(runs)):.0%}) "
             f"| {_mean([float(f) for f in found])}; {median} (budget {budget}) "
             f"| {statistics.mean(share):.0%} | {collided}/{len(runs)} "
+            f"| {_mean(first_collision)} | {statistics.mean(contact):.0%} "
             f"| {_mean([float(b) for b in best])} | {_mean(fresh)} |"
         )
     return "\n".join(lines)
