@@ -1,6 +1,8 @@
 """VerifAI's samplers compared on the dev set's executable scripts (`arise search`).
 
-Every sampler gets the same budget of trials per script and the same seed. For each
+Every sampler gets the same budget of trials per script and the same seeds (a seed fixes
+the sampler's draws and the scene's other random choices; each script and seed is one
+search). For each
 sampler: the share of scripts the search made critical (a collision or a TTC under 1 s in
 some trial), the trials it took to the first such trial, the share of critical trials
 among all trials (an active sampler should keep finding them once it has one), the best
@@ -13,7 +15,7 @@ critical are searched (`--all` takes every one): the others are critical at thei
 sample, and a search has nothing to find there.
 
 Run:  .venv/bin/python benchmarks/search.py [--trials 30] [--samplers random,halton,ce]
-          [--seed 0] [--workers 2] [--out out/bench-search] [--ids so-4,lc-1] [--timing]
+          [--seeds 0,1] [--workers 2] [--out out/bench-search] [--ids so-4,lc-1] [--timing]
 Trials go to OUT/search.sqlite: a killed run resumes. Prints Markdown tables; copy them
 into docs/benchmarks.md with the machine, the date and the load.
 """
@@ -73,6 +75,7 @@ def search(
     store: SearchStore,
     executor: Executor = Executor.LOCAL,
     workers: int | None = None,
+    seed: int = 0,
 ) -> tuple[SearchResult, float]:
     config = SearchConfig(
         script=script,
@@ -81,7 +84,7 @@ def search(
         trials=args.trials,
         workers=workers or args.workers,
         executor=executor,
-        seed=args.seed,
+        seed=seed,
         check=CheckOptions(timeout=60, spawn_attempts=SEARCH_SPAWN_ATTEMPTS),
     )
     started = time.perf_counter()
@@ -89,8 +92,8 @@ def search(
     return result, time.perf_counter() - started
 
 
-def _mean(values: list[float]) -> str:
-    return f"{statistics.mean(values):.1f}" if values else "-"
+def _mean(values: list[float], digits: int = 1) -> str:
+    return f"{statistics.mean(values):.{digits}f}" if values else "-"
 
 
 def sampler_table(results: dict[SamplerKind, list[tuple[SearchResult, float]]], budget: int) -> str:
@@ -124,7 +127,7 @@ def sampler_table(results: dict[SamplerKind, list[tuple[SearchResult, float]]], 
             f"| {_mean([float(f) for f in found])}; {median} (budget {budget}) "
             f"| {statistics.mean(share):.0%} | {collided}/{len(runs)} "
             f"| {_mean(first_collision)} | {statistics.mean(contact):.0%} "
-            f"| {_mean([float(b) for b in best])} | {_mean(fresh)} |"
+            f"| {_mean([float(b) for b in best], 2)} | {_mean(fresh)} |"
         )
     return "\n".join(lines)
 
@@ -133,7 +136,7 @@ def script_table(results: dict[SamplerKind, list[tuple[SearchResult, float]]]) -
     samplers = list(results)
     header = "| script | " + " | ".join(f"{s.value}: best TTC (first critical)" for s in samplers)
     lines = [header + " |", "|---" * (len(samplers) + 1) + "|"]
-    names = [r.config.script.stem for r, _ in results[samplers[0]]]
+    names = [f"{r.config.script.stem} (seed {r.config.seed})" for r, _ in results[samplers[0]]]
     for index, name in enumerate(names):
         cells = []
         for sampler in samplers:
@@ -145,7 +148,7 @@ def script_table(results: dict[SamplerKind, list[tuple[SearchResult, float]]]) -
     return "\n".join(lines)
 
 
-def timing(script: Path, args: argparse.Namespace) -> str:
+def timing(script: Path, args: argparse.Namespace, seeds: list[int]) -> str:
     """One search of the same script on each executor, each into a fresh database."""
     lines = [
         "| executor | workers | trials | wall time (s) | s per trial |",
@@ -160,7 +163,13 @@ def timing(script: Path, args: argparse.Namespace) -> str:
         with SearchStore(database) as store:
             try:
                 result, seconds = search(
-                    script, SamplerKind.CE, args, store, executor=executor, workers=workers
+                    script,
+                    SamplerKind.CE,
+                    args,
+                    store,
+                    executor=executor,
+                    workers=workers,
+                    seed=seeds[0],
                 )
             except Exception as error:  # noqa: BLE001  (report, then time the others)
                 lines.append(f"| {executor.value} | {workers} | - | failed: {error} | - |")
@@ -176,7 +185,7 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--trials", type=int, default=30)
     parser.add_argument("--samplers", default="random,halton,ce")
-    parser.add_argument("--seed", type=int, default=0)
+    parser.add_argument("--seeds", default="0", help="comma-separated, e.g. 0,1")
     parser.add_argument("--workers", type=int, default=2)
     parser.add_argument("--out", default="out/bench-search")
     parser.add_argument("--ids", default=None, help="comma-separated prompt ids (e.g. so-4,lc-1)")
@@ -185,6 +194,7 @@ def main() -> None:
     args = parser.parse_args()
 
     samplers = [SamplerKind(s.strip()) for s in args.samplers.split(",")]
+    seeds = [int(s) for s in args.seeds.split(",")]
     scripts = pick_scripts(args.ids, args.all)
     load = os.getloadavg()
     print(
@@ -192,24 +202,26 @@ def main() -> None:
         f"load average at start {load[0]:.1f} / {load[1]:.1f} / {load[2]:.1f}"
     )
     print(
-        f"{len(scripts)} scripts x {len(samplers)} samplers x {args.trials} trials, seed {args.seed}"
+        f"{len(scripts)} scripts x {len(samplers)} samplers x {args.trials} trials, "
+        f"seeds {', '.join(map(str, seeds))}"
     )
     results: dict[SamplerKind, list[tuple[SearchResult, float]]] = {s: [] for s in samplers}
     started = time.perf_counter()
     with SearchStore(Path(args.out) / "search.sqlite") as store:
-        for script in scripts:
-            for sampler in samplers:
-                result, seconds = search(script, sampler, args, store)
-                results[sampler].append((result, seconds))
-                best = result.best
-                print(
-                    f"{script.stem} {sampler.value}: best "
-                    f"{'-' if best is None else best.outcome.value} at "
-                    f"{'-' if best is None else best.index + 1}, first critical "
-                    f"{result.first_critical or '-'}, {seconds:.0f} s"
-                    + (f" ({result.resumed} resumed)" if result.resumed else ""),
-                    flush=True,
-                )
+        for seed in seeds:
+            for script in scripts:
+                for sampler in samplers:
+                    result, seconds = search(script, sampler, args, store, seed=seed)
+                    results[sampler].append((result, seconds))
+                    best = result.best
+                    print(
+                        f"{script.stem} seed {seed} {sampler.value}: best "
+                        f"{'-' if best is None else best.outcome.value} at "
+                        f"{'-' if best is None else best.index + 1}, first critical "
+                        f"{result.first_critical or '-'}, {seconds:.0f} s"
+                        + (f" ({result.resumed} resumed)" if result.resumed else ""),
+                        flush=True,
+                    )
     total = time.perf_counter() - started
     load = os.getloadavg()
     print(
@@ -221,7 +233,7 @@ def main() -> None:
     print(script_table(results))
     if args.timing and scripts:
         print()
-        print(timing(scripts[0], args))
+        print(timing(scripts[0], args, seeds))
 
 
 if __name__ == "__main__":
