@@ -10,6 +10,7 @@ from pathlib import Path
 import pytest
 
 from arise.evaluate.search import (
+    Executor,
     NoFreeParameters,
     Objective,
     SamplerKind,
@@ -127,3 +128,20 @@ def test_a_script_without_free_parameters_is_refused(tmp_path: Path) -> None:
         pytest.raises(NoFreeParameters, match="no free parameters"),
     ):
         run_search(config, store)
+
+
+@pytest.mark.slow
+def test_ray_executor_proposes_and_scores_as_the_local_one(tmp_path: Path) -> None:
+    """Same seed and batch size: the same values, and the same scenes, so the same scores;
+    the trials ran in confined workers inside Ray actors."""
+    pytest.importorskip("ray")
+    results = {}
+    for executor in (Executor.LOCAL, Executor.RAY):
+        config = _config(4, SamplerKind.HALTON)
+        config.workers, config.executor = 2, executor
+        with SearchStore(tmp_path / f"{executor.value}.sqlite") as store:
+            results[executor] = run_search(config, store)
+    local, ray = results[Executor.LOCAL], results[Executor.RAY]
+    assert [t.values for t in ray.trials] == [t.values for t in local.trials]
+    assert [t.outcome.value for t in ray.trials] == [t.outcome.value for t in local.trials]
+    assert all(t.outcome.ok for t in ray.trials)
