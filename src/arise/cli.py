@@ -28,6 +28,8 @@ from arise.doctor import DOCTOR_HELP, doctor_command
 from arise.errors import AriseError
 from arise.evaluate.cli import BENCH_HELP, REPORT_HELP, bench_command, report_command
 from arise.evaluate.judge_cli import JUDGE_HELP, judge_command
+from arise.evaluate.search.cli import SEARCH_HELP, search_command
+from arise.evaluate.search.critical import with_critical_search
 from arise.generate.cli import GENERATE_HELP, generate_command
 from arise.kb.cli import app as kb_app
 from arise.llm.cli import app as llm_app
@@ -102,11 +104,12 @@ app = typer.Typer(
     add_completion=False,
     pretty_exceptions_enable=False,
 )
-app.command("generate", help=GENERATE_HELP)(generate_command)
+app.command("generate", help=GENERATE_HELP)(with_critical_search(generate_command))
 app.command("check", help=CHECK_HELP)(check_command)
 app.command("bench", help=BENCH_HELP)(bench_command)
 app.command("report", help=REPORT_HELP)(report_command)
 app.command("judge", help=JUDGE_HELP)(judge_command)
+app.command("search", help=SEARCH_HELP)(search_command)
 app.command("replay", help=REPLAY_HELP)(replay_command)
 app.command("export", help=EXPORT_HELP)(export_command)
 app.command("serve", help=SERVE_HELP)(serve_command)

@@ -7,6 +7,7 @@ Exit code 0 when everything the offline default needs is there, 1 otherwise.
 
 from __future__ import annotations
 
+import importlib.util
 import os
 import shutil
 from dataclasses import dataclass
@@ -132,6 +133,27 @@ def _carla(host: str, port: int) -> list[Finding]:
     return [Finding("carla", Verdict.OK, f"{host}:{port} answers")]
 
 
+def _verifai() -> list[Finding]:
+    """VerifAI is optional: scripts with VerifAI parameters and `arise search` need it."""
+    from importlib.metadata import PackageNotFoundError, version
+
+    try:
+        installed = version("verifai")
+    except PackageNotFoundError:
+        return [
+            Finding(
+                "verifai",
+                Verdict.WARN,
+                "not installed: VerifAI-style scripts and `arise search` need "
+                "`pip install --no-deps verifai==2.2.0 dill` (docs/search.md)",
+            )
+        ]
+    samplers = "random, halton, ce" + (
+        ", bo" if importlib.util.find_spec("GPyOpt") else " (bo needs GPyOpt)"
+    )
+    return [Finding("verifai", Verdict.OK, f"verifai {installed}; samplers: {samplers}")]
+
+
 def _folders() -> list[Finding]:
     findings = []
     root = cache_dir()
@@ -159,7 +181,7 @@ def _folders() -> list[Finding]:
     return findings
 
 
-DOCTOR_HELP = """Check this machine: sandbox, model, maps, CARLA, cache folders. No model call.
+DOCTOR_HELP = """Check this machine: sandbox, model, maps, CARLA, VerifAI, cache folders. No model call.
 
 Examples:
 
@@ -179,6 +201,7 @@ def doctor_command(
         *_model(),
         *_maps(map_dir),
         *_carla(carla_host, carla_port),
+        *_verifai(),
         *_folders(),
     ]
     colour = {Verdict.OK: "green", Verdict.WARN: "yellow", Verdict.FAIL: "bold red"}

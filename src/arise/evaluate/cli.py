@@ -260,6 +260,15 @@ def report_command(
             "conformity and criticality with the current checks (needs the runs' folders).",
         ),
     ] = False,
+    search_trials: Annotated[
+        int,
+        typer.Option(
+            help="First search each executed run's script for this many trials (VerifAI's "
+            "cross-entropy sampler, smallest TTC; see `arise search`) and add 'critical "
+            "after search' to the criticality table. 0: no search.",
+            min=0,
+        ),
+    ] = 0,
 ) -> None:
     if not database.is_file():
         errors.print(f"[red]error:[/red] no such database: {database}")
@@ -271,6 +280,19 @@ def report_command(
                 f"re-checked {count} executed run(s); sandbox: "
                 + confinement_summary([r.sandbox for r in store.runs() if r.ok])
             )
+        if search_trials:
+            from arise.evaluate.search.bench import search_runs
+
+            count = search_runs(
+                store,
+                search_trials,
+                on_record=lambda r: console.print(
+                    f"searched {r.task.label()}: "
+                    f"{'critical' if (r.criticality or {})['search']['critical'] else 'not critical'}"
+                    f" within {search_trials} trials"
+                ),
+            )
+            console.print(f"searched {count} executed run(s)")
         records, meta = store.runs(), store.meta()
     if not records:
         errors.print(f"[red]error:[/red] {database} holds no finished runs yet")

@@ -81,6 +81,17 @@ def collision_rate(runs: Sequence[RunRecord]) -> float | None:
     )
 
 
+def search_critical_rate(runs: Sequence[RunRecord]) -> float | None:
+    """Share of the searched executed runs whose search (`arise report --search-trials`)
+    reached a collision or a TTC under 1 s."""
+    searched = [
+        r.criticality["search"]
+        for r in runs
+        if r.ok and r.criticality and isinstance(r.criticality.get("search"), dict)
+    ]
+    return sum(bool(s.get("critical")) for s in searched) / len(searched) if searched else None
+
+
 def _criticality_mean(name: str) -> Callable[[Sequence[RunRecord]], float | None]:
     def metric(runs: Sequence[RunRecord]) -> float | None:
         return _mean((r.criticality or {}).get(name) for r in runs if r.ok)
@@ -104,6 +115,7 @@ METRICS: dict[str, Metric] = {
     "min distance (m)": _criticality_mean("min_distance"),
     "min TTC (s)": _criticality_mean("min_ttc"),
     "route completion": _criticality_mean("route_completion"),
+    "critical after search": search_critical_rate,
 }
 
 

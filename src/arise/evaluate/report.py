@@ -26,7 +26,13 @@ COST_METRICS = [
     "gate seconds / run",
 ]
 QUALITY_METRICS = ["fidelity", "conformity", "gate met", "SCS"]
-CRITICALITY_METRICS = ["collision rate", "min distance (m)", "min TTC (s)", "route completion"]
+CRITICALITY_METRICS = [
+    "collision rate",
+    "min distance (m)",
+    "min TTC (s)",
+    "route completion",
+    "critical after search",
+]
 PAPER_ORDER = list(PAPER_CATEGORIES)
 
 
@@ -72,6 +78,7 @@ def _format(value: float | None, metric: str) -> str:
         "gate met",
         "collision rate",
         "route completion",
+        "critical after search",
     ) or metric.startswith("ESR"):
         return f"{value:.3f}"
     if metric.startswith(("tokens", "seconds", "median", "gate seconds")):
@@ -286,7 +293,10 @@ def markdown(runs: Sequence[RunRecord], title: str, meta: dict[str, object]) -> 
         "## Criticality from the traces",
         "",
         "Between the ego and the adversary in executed runs: collision rate, mean closest "
-        "approach, mean smallest time-to-collision, mean ego route completion.",
+        "approach, mean smallest time-to-collision, mean ego route completion. critical "
+        "after search: share of the executed scripts whose search (`arise report "
+        "--search-trials N`, VerifAI's cross-entropy sampler) reached a collision or a TTC "
+        "under 1 s (N/A: not searched).",
         "",
         _markdown_table(runs, CRITICALITY_METRICS),
         "",

@@ -148,6 +148,30 @@ def hint_for(
         return "define the ego first: `ego = new Car ...`, before anything that refers to it."
     if error_type == "WeatherError":
         return "use a CARLA weather preset name (e.g. 'ClearNoon') or a dict of its parameters."
+    return _verifai_hint(error_type, message)
+
+
+#: VerifAI sampler types that run offline with the verifai extra ('bo' also needs GPyOpt).
+VERIFAI_SAMPLERS = ("random", "halton", "ce", "mab", "grid", "bo")
+
+
+def _verifai_hint(error_type: str, message: str) -> str | None:
+    """Scripts in VerifAI's style need the `verifai` extra, and one of its sampler names."""
+    if error_type == "ModuleNotFoundError" and "'verifai'" in message:
+        return (
+            "the script declares VerifAI parameters (VerifaiRange, VerifaiOptions, ...); "
+            "install VerifAI without its extra dependencies: "
+            "`pip install --no-deps verifai==2.2.0 dill` (docs/search.md)."
+        )
+    if "unknown sampler type" in message or "Unknown VerifAI sampler type" in message:
+        return "set `param verifaiSamplerType` to one of " + ", ".join(
+            f"'{name}'" for name in VERIFAI_SAMPLERS
+        )
+    if "requires GPyOpt" in message:
+        return (
+            "VerifAI's Bayesian optimisation needs GPyOpt and GPy (`pip install GPyOpt GPy`); "
+            "or use `param verifaiSamplerType = 'ce'`, the cross-entropy sampler."
+        )
     return None
 
 
@@ -197,6 +221,8 @@ def from_exception(
             line, column = info.ego_line, None
     if line is None and stage is Stage.COMPILE and "model" in message.lower() and info.model_line:
         line = info.model_line
+    if line is None and _verifai_hint(error_type, message) and "verifai" not in message:
+        line = info.param_lines.get("verifaiSamplerType")
     if line is None and error_type == "WeatherError":
         line = info.param_lines.get("weather")
     if line is None and error_type == "UnknownBlueprintError":

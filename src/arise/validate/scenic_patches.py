@@ -36,6 +36,19 @@ traces. docs/architecture.md says what moving to Scenic 3.2 would take.
    SIGALRM handler means an alarm in-process does not fire.
    Breaks if: the module global is renamed: endless loops are then caught only by the
    wall-clock timeout.
+
+5. VerifAI parameters with weights under the cross-entropy sampler
+   (scenic.core.external_params): `VerifaiDiscreteRange` keeps its `low` and `high`, and
+   the module's `numpy.array` accepts rows of different lengths (as a list of rows).
+   Why: when a script gives a VerifAI parameter weights or buckets (or uses
+   `VerifaiParameter.withPrior`, or `VerifaiOptions` with weights) and sets
+   `param verifaiSamplerType = 'ce'`, Scenic 3.1.1 reads `param.high - param.low`, which
+   the class never stored, and builds one array from per-parameter bucket rows of
+   different lengths, which numpy >= 1.24 refuses: such scripts fail to compile, with
+   or without arise. The rows are what VerifAI's sampler iterates over, so a list of rows
+   is what it needs.
+   Breaks if: `VerifaiDiscreteRange.__init__` stops taking `(low, high, weights)` or the
+   module stops importing numpy as `numpy`: those scripts fail to compile again.
 """
 
 from __future__ import annotations
@@ -91,11 +104,19 @@ def check_shapes() -> list[str]:
             problems.append(f"the translator no longer calls {name} by name")
     if not hasattr(dynamics, "stuckBehaviorWarningTimeout"):
         problems.append("scenic.core.dynamics.stuckBehaviorWarningTimeout is gone")
+    import scenic.core.external_params as external
+
+    names = list(inspect.signature(external.VerifaiDiscreteRange.__init__).parameters)
+    if names[:4] != ["self", "low", "high", "weights"]:
+        problems.append(f"VerifaiDiscreteRange takes {names}, not (self, low, high, weights)")
+    shim = getattr(external, "numpy", None)
+    if shim is not _numpy_module() and not isinstance(shim, _RaggedNumpy):
+        problems.append("scenic.core.external_params no longer imports numpy as `numpy`")
     return problems
 
 
 def install() -> None:
-    """Install the four patches (once per worker process)."""
+    """Install the five patches (once per worker process)."""
     problems = check_shapes()
     if problems:
         raise ScenicChanged("; ".join(problems))
@@ -103,6 +124,7 @@ def install() -> None:
     _trace_heading_and_speed()
     _memoise_library_parsing()
     _stop_stuck_behaviors()
+    _verifai_weights_under_cross_entropy()
 
 
 def _memoise_networks() -> None:
@@ -187,3 +209,40 @@ def _stop_stuck_behaviors() -> None:
 
     warnings.simplefilter("error", StuckBehaviorWarning)
     dynamics.stuckBehaviorWarningTimeout = STUCK_BEHAVIOR_SECONDS
+
+
+def _numpy_module() -> Any:
+    import numpy
+
+    return numpy
+
+
+class _RaggedNumpy:
+    """numpy, except that `array` of rows of different lengths gives the list of rows."""
+
+    def __init__(self, module: Any):
+        self._module = module
+
+    def __getattr__(self, name: str) -> Any:
+        return getattr(self._module, name)
+
+    def array(self, rows: Any, *args: Any, **kwargs: Any) -> Any:
+        try:
+            return self._module.array(rows, *args, **kwargs)
+        except ValueError:
+            return [self._module.asarray(row) for row in rows]
+
+
+def _verifai_weights_under_cross_entropy() -> None:
+    import scenic.core.external_params as external
+
+    if isinstance(external.numpy, _RaggedNumpy):
+        return
+    external.numpy = _RaggedNumpy(external.numpy)
+    original = external.VerifaiDiscreteRange.__init__
+
+    def keep_bounds(self: Any, low: Any, high: Any, weights: Any = None) -> None:
+        original(self, low, high, weights)
+        self.__dict__["low"], self.__dict__["high"] = low, high
+
+    external.VerifaiDiscreteRange.__init__ = keep_bounds

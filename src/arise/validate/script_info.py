@@ -76,10 +76,10 @@ def read_script_info(text: str) -> ScriptInfo:
     return ScriptInfo(
         model=model_match.group(1) if model_match else None,
         model_line=_line_of(text, model_match.start(1)) if model_match else None,
-        map_line=_line_of(text, map_match.start()) if map_match else None,
+        map_line=_line_of(text, map_match.start(1)) if map_match else None,
         map_expression=map_match.group(2) if map_match else None,
         requested_map=requested,
         requested_map_file=requested_file,
         ego_line=_line_of(text, ego.start()) if ego else None,
-        param_lines={name: _line_of(text, m.start()) for name, m in params.items()},
+        param_lines={name: _line_of(text, m.start(1)) for name, m in params.items()},
     )

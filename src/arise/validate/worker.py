@@ -92,6 +92,21 @@ def _warm_up() -> None:
     import arise.validate.render  # noqa: F401
     import arise.validate.worldmodel.simulator  # noqa: F401
 
+    _import_verifai()
+
+
+def _import_verifai() -> None:
+    """VerifAI, when installed, before confinement: scripts that declare `VerifaiRange`
+    and friends have Scenic import it at compile time, and loading it (with the Ray it
+    probes for) in every check would cost about half a second each."""
+    import importlib.util
+
+    if importlib.util.find_spec("verifai") is None:
+        return
+    with contextlib.suppress(Exception):  # a broken install shows up in the check itself
+        import verifai.features  # noqa: F401
+        import verifai.server  # noqa: F401
+
 
 def _build_vocabulary() -> list[str]:
     """Names a script may use, for 'did you mean' hints on NameErrors."""

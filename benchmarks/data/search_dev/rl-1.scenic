@@ -1,0 +1,50 @@
+# The ego goes straight through a signalized intersection on green; a car from the crossing road runs its red light.
+# BEGIN HEADER
+param map = localPath('maps/arise_intersection4.xodr')
+param carla_map = 'arise_intersection4'
+model scenic.simulators.carla.model
+# END HEADER
+# BEGIN WEATHER
+# kb: weather.clear_noon
+param weather = 'ClearNoon'
+# END WEATHER
+# BEGIN BEHAVIOR
+# kb: behavior.run_red_light
+param OPT_ADV_SPEED = Range(9, 12)
+behavior AdversaryBehavior():
+    take SetTrafficLightAction("red")
+    do FollowTrajectoryBehavior(target_speed=globalParameters.OPT_ADV_SPEED, trajectory=advRoute)
+    do FollowLaneBehavior(target_speed=globalParameters.OPT_ADV_SPEED)
+# END BEHAVIOR
+# BEGIN GEOMETRY
+# kb: geometry.signalized_straight_cross_from_right
+param OPT_EGO_SPEED = Range(7, 10)
+param OPT_EGO_TO_JUNCTION = Range(15, 28)
+behavior EgoOnGreenBehavior():
+    take SetTrafficLightAction("green")
+    do FollowTrajectoryBehavior(target_speed=globalParameters.OPT_EGO_SPEED, trajectory=egoRoute)
+    do FollowLaneBehavior(target_speed=globalParameters.OPT_EGO_SPEED)
+junctionPairs = [(m, c) for i in network.intersections if i.isSignalized for m in i.maneuvers if m.type is ManeuverType.STRAIGHT for c in m.conflictingManeuvers if c.type is ManeuverType.STRAIGHT and 45 deg < (relative heading of c.startLane.centerline.end from m.startLane.centerline.end) < 135 deg]
+chosenPair = Uniform(*junctionPairs)
+egoManeuver = chosenPair[0]
+conflictManeuver = chosenPair[1]
+junction = egoManeuver.intersection
+egoLane = egoManeuver.startLane
+egoRoute = [egoManeuver.startLane, egoManeuver.connectingLane, egoManeuver.endLane]
+egoStart = new OrientedPoint at egoLane.centerline.pointAlongBy(-globalParameters.OPT_EGO_TO_JUNCTION), facing roadDirection
+ego = new Car at egoStart, with behavior EgoOnGreenBehavior()
+# END GEOMETRY
+# BEGIN SPAWN
+# kb: spawn.junction_conflict_route
+param OPT_SPAWN_TO_JUNCTION = Range(14, 28)
+advManeuver = conflictManeuver
+advRoute = [advManeuver.startLane, advManeuver.connectingLane, advManeuver.endLane]
+advLane = advManeuver.startLane
+advStart = new OrientedPoint at advLane.centerline.pointAlongBy(-globalParameters.OPT_SPAWN_TO_JUNCTION), facing roadDirection
+adversary = new Car at advStart, with behavior AdversaryBehavior()
+# END SPAWN
+# BEGIN MISC
+# END MISC
+# BEGIN REQUIREMENTS
+terminate after 20 seconds
+# END REQUIREMENTS

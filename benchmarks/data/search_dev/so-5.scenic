@@ -1,0 +1,38 @@
+# Straight road, sunset. A car stopped in the ego's lane 30 meters ahead blocks the way; the ego has to notice it in time.
+# BEGIN HEADER
+param map = localPath('maps/arise_straight.xodr')
+param carla_map = 'arise_straight'
+model scenic.simulators.carla.model
+# END HEADER
+# BEGIN WEATHER
+# kb: weather.clear_sunset
+param weather = 'ClearSunset'
+# END WEATHER
+# BEGIN BEHAVIOR
+# kb: behavior.stalled
+behavior AdversaryBehavior():
+    while True:
+        take SetThrottleAction(0), SetBrakeAction(1.0)
+# END BEHAVIOR
+# BEGIN GEOMETRY
+# kb: geometry.straight_road
+param OPT_EGO_SPEED = Range(7, 10)
+param OPT_EGO_START = Range(10, 40)
+egoLane = Uniform(*[lane for lane in network.lanes if lane.centerline.length > 80])
+egoStart = new OrientedPoint at egoLane.centerline.pointAlongBy(globalParameters.OPT_EGO_START), facing roadDirection
+ego = new Car at egoStart, with behavior FollowLaneBehavior(target_speed=globalParameters.OPT_EGO_SPEED)
+# END GEOMETRY
+# BEGIN SPAWN
+# kb: spawn.lead_same_lane
+param OPT_SPAWN_GAP = Range(15, 25)
+advStart = new OrientedPoint following roadDirection from egoStart for globalParameters.OPT_SPAWN_GAP
+advLane = egoLane
+adversary = new Car at advStart, with behavior AdversaryBehavior()
+# END SPAWN
+# BEGIN MISC
+# END MISC
+# BEGIN REQUIREMENTS
+# kb: requirements.adversary_within_distance
+require (distance from ego to adversary) < 40
+terminate after 20 seconds
+# END REQUIREMENTS

@@ -1,0 +1,83 @@
+"""VerifAI's samplers, driven through `ParamSampler`: reproducible from the seed whatever
+else draws random numbers, values inside the declared space, and the cross-entropy
+sampler learns from the feedback it is given."""
+
+from __future__ import annotations
+
+import importlib.util
+import random
+import statistics
+
+import numpy
+import pytest
+
+from arise.evaluate.search import FreeParam, ParamKind, SamplerKind, SamplerUnavailable
+from arise.evaluate.search.sampler import ParamSampler
+
+pytest.importorskip("verifai", reason="the verifai extra is not installed (docs/search.md)")
+
+PARAMS = [
+    FreeParam("SPEED", ParamKind.RANGE, 1, "Range(0, 10)", low=0, high=10),
+    FreeParam("GAP", ParamKind.DISCRETE, 2, "DiscreteRange(3, 6)", low=3, high=6),
+    FreeParam("CAR", ParamKind.OPTIONS, 3, "Uniform('a', 'b')", options=("a", "b")),
+]
+
+
+@pytest.mark.parametrize("kind", [SamplerKind.RANDOM, SamplerKind.HALTON, SamplerKind.CE])
+def test_same_seed_same_proposals_whatever_else_draws(kind: SamplerKind) -> None:
+    first = ParamSampler(PARAMS, kind, seed=4, critical_level=1.0)
+    second = ParamSampler(PARAMS, kind, seed=4, critical_level=1.0)
+    a = []
+    for _ in range(6):
+        proposal = first.propose()
+        a.append(proposal.values)
+        first.tell(proposal, float(proposal.values["SPEED"]))
+    b = []
+    for _ in range(6):
+        random.random()
+        numpy.random.rand(3)
+        proposal = second.propose()
+        b.append(proposal.values)
+        second.tell(proposal, float(proposal.values["SPEED"]))
+    assert a == b
+    for values in a:
+        assert 0 <= float(values["SPEED"]) <= 10
+        assert values["GAP"] in (3, 4, 5, 6) and isinstance(values["GAP"], int)
+        assert values["CAR"] in ("a", "b")
+
+
+def test_halton_proposes_the_halton_sequence() -> None:
+    sampler = ParamSampler(PARAMS[:1], SamplerKind.HALTON, seed=0, critical_level=1.0)
+    assert [sampler.propose().values["SPEED"] for _ in range(3)] == [5.0, 2.5, 7.5]
+
+
+def test_cross_entropy_moves_toward_low_scores_and_random_does_not() -> None:
+    """Score = SPEED: VerifAI's cross-entropy sampler, fed the elite feedback, ends up
+    proposing small speeds; the random sampler keeps its mean near 5."""
+
+    def late_mean(kind: SamplerKind) -> float:
+        sampler = ParamSampler(PARAMS[:1], kind, seed=1, critical_level=0.0)
+        seen = []
+        for _ in range(60):
+            proposal = sampler.propose()
+            speed = float(proposal.values["SPEED"])
+            seen.append(speed)
+            sampler.tell(proposal, speed)
+        return statistics.mean(seen[-20:])
+
+    assert late_mean(SamplerKind.CE) < 3.0
+    assert late_mean(SamplerKind.RANDOM) > 3.5
+
+
+def test_elite_feedback_is_negative_only_below_the_level() -> None:
+    sampler = ParamSampler(PARAMS[:1], SamplerKind.CE, seed=0, critical_level=1.0)
+    for score in (9.0, 8.0, 7.0, 6.0):
+        sampler.feedback(score)
+    assert sampler.feedback(0.5) < 0  # critical: always elite
+    assert sampler.feedback(9.5) > 0
+
+
+@pytest.mark.skipif(importlib.util.find_spec("GPyOpt") is not None, reason="GPyOpt installed")
+def test_bayesian_optimisation_without_gpyopt_says_what_to_install() -> None:
+    with pytest.raises(SamplerUnavailable, match="GPyOpt"):
+        ParamSampler(PARAMS, SamplerKind.BO, seed=0, critical_level=1.0)
