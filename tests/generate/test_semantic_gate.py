@@ -331,3 +331,53 @@ def test_the_gate_is_off_in_the_report_of_a_baseline() -> None:
         "contradictions": [],
         "seconds": 0.0,
     }
+
+
+def test_ahead_in_its_lane_holds_for_the_lane_a_turning_ego_enters() -> None:
+    """The ego turns right (up +y, then along +x); the stalled car stands in the lane it
+    turns into, far right of where the ego started: ahead on its route, not a contradiction."""
+    turn = [(0.0, 0.0, 0.0), (0.0, 6.0, 0.0), (3.0, 10.0, -0.8), (8.0, 12.0, -1.57)]
+    turn += [(8.0 + 5.0 * i, 12.0, -1.57) for i in range(1, 6)]
+    ego = AgentTrace(
+        name="ego",
+        kind="Car",
+        width=2.0,
+        length=4.5,
+        is_ego=True,
+        trajectory=[
+            TracePoint(step=i, x=x, y=y, heading=h, speed=5.0) for i, (x, y, h) in enumerate(turn)
+        ],
+    )
+    stalled = AgentTrace(
+        name="Motorcycle1",
+        kind="Motorcycle",
+        width=0.8,
+        length=2.0,
+        behavior="AdversaryBehavior",
+        trajectory=[TracePoint(step=i, x=24.0, y=12.3, heading=-1.57, speed=0.0) for i in range(9)],
+    )
+    facts = SimulationFacts(
+        steps=9,
+        timestep=0.1,
+        termination_type="time",
+        termination_reason="done",
+        params={"weather": "ClearNoon"},
+        agents=[ego, stalled],
+    )
+    spec = ScenarioSpec.model_validate(
+        {
+            **SPEC,
+            "adversary_type": "motorcycle",
+            "ego_maneuver": "turn_right",
+            "road_type": "intersection",
+            "spawn_position": "ahead_same_lane",
+        }
+    )
+    [check] = [c for c in check_conformity(spec, facts).checks if c.name == "spawn_position"]
+    assert check.ok, check
+    elsewhere = stalled.model_copy(
+        update={"trajectory": [p.model_copy(update={"y": 20.0}) for p in stalled.trajectory]}
+    )
+    facts = facts.model_copy(update={"agents": [ego, elsewhere]})
+    [check] = [c for c in check_conformity(spec, facts).checks if c.name == "spawn_position"]
+    assert not check.ok, "8 m off the ego's path is not in its lane"

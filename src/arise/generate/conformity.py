@@ -235,13 +235,14 @@ def start_relation(ego: AgentTrace, adversary: AgentTrace) -> StartRelation | No
     return StartRelation(ahead=ahead, left=left, direction=direction)
 
 
-def _spawn_agrees(position: RelativePosition, rel: StartRelation) -> bool:
+def _spawn_agrees(position: RelativePosition, rel: StartRelation, on_route: bool = False) -> bool:
+    """Does the start relation fit the spec's position? `on_route`: the adversary starts on
+    the path the ego then drives (ahead in its lane, for an ego that turns into it)."""
     side, direction = rel.side, rel.direction
     moving = direction != "unknown"
     lateral = abs(rel.left)
     rules = {
-        RelativePosition.AHEAD_SAME_LANE: rel.ahead > 0
-        and side == "centre"
+        RelativePosition.AHEAD_SAME_LANE: (rel.ahead > 0 and side == "centre" or on_route)
         and direction != "opposite",
         RelativePosition.BEHIND_SAME_LANE: rel.ahead < 0 and side == "centre",
         RelativePosition.ADJACENT_LANE_LEFT: side == "left"
@@ -259,6 +260,20 @@ def _spawn_agrees(position: RelativePosition, rel: StartRelation) -> bool:
         and (direction == "crossing" or not moving),
     }
     return rules[position]
+
+
+def _starts_on_route(ego: AgentTrace, adversary: AgentTrace) -> bool:
+    """Whether the adversary starts ahead on the path the ego drives: within half a lane of
+    it, beyond the ego's first few metres (a turning ego's exit lane is its lane ahead)."""
+    if len(ego.trajectory) < 2 or not adversary.trajectory:
+        return False
+    from shapely.geometry import LineString, Point
+
+    path = LineString([(p.x, p.y) for p in ego.trajectory])
+    if path.length == 0:
+        return False
+    start = Point(adversary.trajectory[0].x, adversary.trajectory[0].y)
+    return path.distance(start) < LANE_HALF and path.project(start) > MOVED_METRES
 
 
 def _reach(ego: AgentTrace, adversary: AgentTrace) -> float | None:
@@ -352,7 +367,9 @@ def check_conformity(
                 "spawn_position",
                 spec.spawn_position.value,
                 relation.describe() if relation else "unknown",
-                None if relation is None else _spawn_agrees(spec.spawn_position, relation),
+                None
+                if relation is None
+                else _spawn_agrees(spec.spawn_position, relation, _starts_on_route(ego, adversary)),
             )
         )
         reach = _reach(ego, adversary)
