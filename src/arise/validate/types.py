@@ -122,6 +122,25 @@ class TracePoint(BaseModel):
     speed: float
 
 
+class LaneSide(StrEnum):
+    """The side an agent moved to, seen in its own direction of travel."""
+
+    LEFT = "left"
+    RIGHT = "right"
+
+
+class LaneChange(BaseModel):
+    """One move of an agent's centre into a neighbouring lane, read from the road network."""
+
+    step: int
+    side: LaneSide
+    # The lane entered runs against the agent's direction of travel (an overtaking or
+    # bypassing car in the oncoming lane); False for a move back from it or within its group.
+    into_opposite: bool = False
+    # The lane left ran against the agent's direction of travel (the way back).
+    from_opposite: bool = False
+
+
 class AgentTrace(BaseModel):
     name: str
     kind: str
@@ -137,6 +156,14 @@ class AgentTrace(BaseModel):
     junction_gap: float | None = None
     # Moves into a neighbouring lane of the same road (None: no road network to tell).
     lane_changes: int | None = None
+    # Every move across a lane boundary outside junctions, in order (same-direction lane
+    # changes and moves into and out of the oncoming lanes).
+    lane_change_log: list[LaneChange] = Field(default_factory=list)
+    # Steps spent in a lane that runs against the agent's travel, outside junctions.
+    opposite_lane_steps: int | None = None
+    # It moved back across a lane boundary within a few seconds of crossing it, i.e. it
+    # wove (a controller fault or an erratic driver), not a deliberate lane change.
+    weaving: bool | None = None
     trajectory: list[TracePoint] = Field(default_factory=list)
 
 
