@@ -14,13 +14,14 @@ from collections.abc import Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
-from arise.validate.types import LaneChange, LaneSide, TracePoint
+from arise.validate.types import LaneChange, TracePoint
+from arise.vocabulary import Side
 
 # Steps an agent's centre must stay in a new lane before the move counts (0.3 s at 0.1 s).
 HOLD_STEPS = 3
 # A move back across the boundary within this many seconds is weaving, not a lane change:
 # a deliberate change and return keeps the other lane for longer.
-WEAVE_SECONDS = 2.5
+WEAVE_SECONDS = 1.5
 # A lane runs against the agent when its direction and the agent's travel differ by more
 # than this (a car that crosses the road at right angles is in no lane's direction).
 AGAINST_ANGLE = math.radians(120)
@@ -69,20 +70,21 @@ def _travel_headings(points: Sequence[TracePoint]) -> list[float]:
 
 def _runs_against(lane: Any, point: TracePoint, travel: float) -> bool:
     try:
-        direction = float(lane.orientation[(point.x, point.y)])
+        found = lane.orientation[(point.x, point.y)]
+        direction = float(getattr(found, "yaw", found))
     except Exception:  # no orientation here: say nothing rather than guess
         return False
     return abs(_wrap(direction - travel)) > AGAINST_ANGLE
 
 
-def _side(old: Any, new: Any, point: TracePoint, travel: float) -> LaneSide:
+def _side(old: Any, new: Any, point: TracePoint, travel: float) -> Side:
     here = (point.x, point.y)
     a = old.centerline.project(here)
     b = new.centerline.project(here)
     dx, dy = b[0] - a[0], b[1] - a[1]
     # Left of a heading h (0 = +y, counter-clockwise) is the direction (-cos h, -sin h).
     left = -dx * math.cos(travel) - dy * math.sin(travel)
-    return LaneSide.LEFT if left > 0 else LaneSide.RIGHT
+    return Side.LEFT if left > 0 else Side.RIGHT
 
 
 def _continues(old: Any, new: Any) -> bool:

@@ -11,6 +11,7 @@ from enum import StrEnum
 from pydantic import BaseModel, Field
 
 from arise.maps.choice import MapChoice
+from arise.vocabulary import Side
 
 __all__ = ["MapChoice"]  # re-exported: results carry the registry's choice
 
@@ -122,18 +123,11 @@ class TracePoint(BaseModel):
     speed: float
 
 
-class LaneSide(StrEnum):
-    """The side an agent moved to, seen in its own direction of travel."""
-
-    LEFT = "left"
-    RIGHT = "right"
-
-
 class LaneChange(BaseModel):
     """One move of an agent's centre into a neighbouring lane, read from the road network."""
 
     step: int
-    side: LaneSide
+    side: Side  # seen in the agent's direction of travel
     # The lane entered runs against the agent's direction of travel (an overtaking or
     # bypassing car in the oncoming lane); False for a move back from it or within its group.
     into_opposite: bool = False
