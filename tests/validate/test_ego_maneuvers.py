@@ -88,9 +88,24 @@ def _network(result: CheckResult) -> Any:
     return _networks[result.map.path]
 
 
-def _junction_steps(result: CheckResult, agent: AgentTrace) -> list[int]:
+def _junction_steps(result: CheckResult, agent: AgentTrace, junction: Any = None) -> list[int]:
+    """Steps the agent was inside a junction (the given one, or any)."""
     network = _network(result)
-    return [p.step for p in agent.trajectory if network.intersectionAt((p.x, p.y)) is not None]
+    steps = []
+    for point in agent.trajectory:
+        found = network.intersectionAt((point.x, point.y))
+        if found is not None and (junction is None or found is junction):
+            steps.append(point.step)
+    return steps
+
+
+def _first_junction(result: CheckResult, agent: AgentTrace) -> Any:
+    network = _network(result)
+    for point in agent.trajectory:
+        found = network.intersectionAt((point.x, point.y))
+        if found is not None:
+            return found
+    return None
 
 
 def _longest_stop(agent: AgentTrace, before: int | None = None) -> int:
@@ -228,8 +243,10 @@ def _check_yield(results: list[CheckResult]) -> None:
         assert result.simulation is not None and not result.simulation.collisions
         ego = _ego(result)
         other = _others(result)[0]
-        ego_inside, other_inside = _junction_steps(result, ego), _junction_steps(result, other)
-        assert ego_inside, "the ego never went"
+        junction = _first_junction(result, ego)
+        assert junction is not None, "the ego never went"
+        ego_inside = _junction_steps(result, ego, junction)
+        other_inside = _junction_steps(result, other, junction)
         if other_inside and other_inside[0] < ego_inside[0]:
             # The crossing car was first: the ego waited until it had left the junction.
             assert ego_inside[0] > other_inside[-1]

@@ -115,14 +115,16 @@ def read_lanes(network: Any, points: Sequence[TracePoint]) -> LaneReading:
         lane = network.laneAt(here)
         if lane is None:
             continue
-        if current is None:
-            current, current_against = lane, _runs_against(lane, point, heading)
-        elif lane is not current:
+        if lane is not current:
             held = held + 1 if lane is candidate else 1
             candidate = lane
             if held >= HOLD_STEPS:
                 against = _runs_against(lane, point, heading)
-                if _neighbours(current, lane) and not _continues(current, lane):
+                if (
+                    current is not None
+                    and _neighbours(current, lane)
+                    and not _continues(current, lane)
+                ):
                     changes.append(
                         LaneChange(
                             step=point.step,
