@@ -31,7 +31,7 @@ AUTOPILOT_GAP = 8.0  # metres kept to whatever is ahead
 # Speed up to which the lateral gains apply as tuned; above it they shrink with 1/v^2.
 LATERAL_REFERENCE_SPEED = 15.0  # m/s
 # The same for lane changes, whose gains are twice as high.
-LANE_CHANGE_REFERENCE_SPEED = 10.0  # m/s
+LANE_CHANGE_REFERENCE_SPEED = 12.0  # m/s
 
 
 class SpeedScheduledLateralController(PIDLateralController):
