@@ -35,7 +35,10 @@ LANE_CHANGE_REFERENCE_SPEED = 12.0  # m/s
 
 
 class SpeedScheduledLateralController(PIDLateralController):
-    """Scenic's lateral PID with its output scaled by (v_ref / v)^2 above v_ref (15 m/s).
+    """Scenic's lateral PID with its output scaled by (v_ref / v)^2 above v_ref.
+
+    v_ref is 15 m/s for lane following and 12 m/s for lane changes, whose gains are twice
+    as high (a lane change at 15 m/s and above overshot into the lane beyond).
 
     In this physics (as on a real car) the yaw rate a steering input gives grows with
     speed, and the cross-track error the PID sees grows with speed again: the loop gain
