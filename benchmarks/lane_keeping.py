@@ -1,11 +1,12 @@
-"""How often the offline ego leaves its lane when it should keep it, per geometry and speed.
+"""Intended versus observed ego lane changes, per geometry entry and speed.
 
 Run:  .venv/bin/python benchmarks/lane_keeping.py [--carla-maps DIR] [--seeds N]
 Each geometry entry of the knowledge base drives the ego alone at the top of its speed
 range (highway entries also at 35 m/s) for 20 s; the trace is read lane by lane with
-Scenic's road network (the validator's `lane_changes`). Prints one markdown row per case:
-lane changes per seed. To compare with an older world model, run it from a worktree of
-that commit (PYTHONPATH=<worktree>/src).
+Scenic's road network (the validator's `lane_changes`, `weaving`, `opposite_lane_steps`).
+Prints one markdown row per case: the lane changes the entry intends (from its tags) and
+those observed per seed. To compare with an older world model, run it from a copy of that
+commit's src (PYTHONPATH=<copy>/src); facts that commit did not have print as "-".
 """
 
 from __future__ import annotations
@@ -24,6 +25,21 @@ from arise.validate import CheckOptions, WorkerPool, check_text
 SPEED = re.compile(r"param OPT_EGO_SPEED = Range\(([\d.]+), ([\d.]+)\)")
 
 
+def _intended(tags: Sequence[str]) -> int:
+    """Lane changes the entry makes on purpose (as tests/validate/test_lane_keeping.py)."""
+    if "ego_lane_change" not in tags:
+        return 0
+    return 2 if "ego_returns" in tags else 1
+
+
+def _said(value: object) -> str:
+    if value is None:
+        return "-"
+    if isinstance(value, bool):
+        return "yes" if value else "no"
+    return str(value)
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--carla-maps", help="folder of CARLA town maps (else our maps)")
@@ -35,7 +51,10 @@ def main(argv: Sequence[str] | None = None) -> int:
         for name, entry in registry.entries.items()
         if entry.features and (not args.carla_maps or entry.source == "map-dir")
     }
-    print("| geometry | map | speed (m/s) | lane changes per seed |\n|---|---|---|---|")
+    print(
+        "| geometry | map | speed (m/s) | intended | observed per seed | weaving "
+        "| oncoming-lane steps |\n|---|---|---|---|---|---|---|"
+    )
     with WorkerPool(size=1) as pool:
         for entry in load_kb().of(Component.GEOMETRY):
             found = SPEED.search(entry.snippet)
@@ -49,7 +68,7 @@ def main(argv: Sequence[str] | None = None) -> int:
                 script = compose([entry], None, map_name).replace(
                     found.group(0), f"param OPT_EGO_SPEED = {speed:g}"
                 )
-                changes = []
+                changes, weaving, opposite = [], [], []
                 for seed in range(args.seeds):
                     options = CheckOptions(
                         seed=seed, steps=200, timeout=120, map_dir=args.carla_maps
@@ -60,7 +79,12 @@ def main(argv: Sequence[str] | None = None) -> int:
                         continue
                     ego = next(a for a in result.simulation.agents if a.is_ego)
                     changes.append(str(ego.lane_changes))
-                print(f"| {entry.id} | {map_name} | {speed:g} | {', '.join(changes)} |")
+                    weaving.append(_said(getattr(ego, "weaving", None)))
+                    opposite.append(_said(getattr(ego, "opposite_lane_steps", None)))
+                print(
+                    f"| {entry.id} | {map_name} | {speed:g} | {_intended(entry.tags)} "
+                    f"| {', '.join(changes)} | {', '.join(weaving)} | {', '.join(opposite)} |"
+                )
     return 0
 
 

@@ -79,6 +79,19 @@ def test_planted_mismatches_are_caught(
 
 
 @pytest.mark.slow
+def test_a_weaving_ego_fails_the_ego_maneuver_check(example_run: CheckResult) -> None:
+    assert example_run.simulation is not None
+    agents = [
+        a.model_copy(update={"weaving": True}) if a.is_ego else a
+        for a in example_run.simulation.agents
+    ]
+    facts = example_run.simulation.model_copy(update={"agents": agents})
+    conformity = check_conformity(_spec(), facts)
+    check = next(c for c in conformity.checks if c.name == "ego_maneuver")
+    assert check.observed == "weaving" and check.ok is False
+
+
+@pytest.mark.slow
 def test_criticality_reads_the_adversary_pair(example_run: CheckResult) -> None:
     crit = criticality(example_run.simulation)
     assert crit is not None and crit.min_distance is not None and crit.min_distance >= 0

@@ -196,7 +196,9 @@ def ego_maneuver(ego: AgentTrace) -> EgoManeuver | None:
     if turn < -TURN_DEGREES:
         return EgoManeuver.TURN_RIGHT
     if ego.lane_changes is not None:
-        return EgoManeuver.CHANGE_LANE if ego.lane_changes else EgoManeuver.GO_STRAIGHT
+        # A bypass through the oncoming lane is a lane change out and one back.
+        moves = ego.lane_changes + sum(1 for c in ego.lane_change_log if c.into_opposite)
+        return EgoManeuver.CHANGE_LANE if moves else EgoManeuver.GO_STRAIGHT
     _, lateral = frame(start, end.x, end.y)  # no map to ask: sideways drift is the sign
     return EgoManeuver.CHANGE_LANE if abs(lateral) > LANE_CHANGE_METRES else EgoManeuver.GO_STRAIGHT
 
@@ -348,6 +350,9 @@ def check_conformity(
     if ego is not None and spec.ego_stopped:
         moved = travel_heading(ego) is not None
         add(ConformityCheck("ego_stopped", "stopped", "moved" if moved else "stopped", not moved))
+    elif ego is not None and ego.weaving:
+        # Weaving across lane lines is no maneuver a description asks for (issue 13).
+        add(ConformityCheck("ego_maneuver", spec.ego_maneuver.value, "weaving", False))
     elif ego is not None:
         maneuver = ego_maneuver(ego)
         add(

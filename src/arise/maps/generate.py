@@ -226,6 +226,10 @@ def _junction(
         start = move.start.lane_point(move.lane_in)
         heading, geometry = _connecting_geometry(move.start, move.end, move.lane_in, move.lane_out)
         lanes = _lanes(0, 1, marks=False)
+        # The reference line runs along the centre of the lane it connects: shift the lane
+        # half its width to the left, or its centre line lies on the boundary between two
+        # lanes and a car that follows it drifts into the neighbouring lane.
+        lanes.add_laneoffset(xodr.LaneOffset(s=0, a=LANE_WIDTH / 2))
         lane = lanes.lanesections[0].rightlanes[0]
         lane.add_link("predecessor", move.lane_in)
         lane.add_link("successor", move.lane_out)

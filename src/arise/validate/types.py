@@ -11,6 +11,7 @@ from enum import StrEnum
 from pydantic import BaseModel, Field
 
 from arise.maps.choice import MapChoice
+from arise.vocabulary import Side
 
 __all__ = ["MapChoice"]  # re-exported: results carry the registry's choice
 
@@ -122,6 +123,18 @@ class TracePoint(BaseModel):
     speed: float
 
 
+class LaneChange(BaseModel):
+    """One move of an agent's centre into a neighbouring lane, read from the road network."""
+
+    step: int
+    side: Side  # seen in the agent's direction of travel
+    # The lane entered runs against the agent's direction of travel (an overtaking or
+    # bypassing car in the oncoming lane); False for a move back from it or within its group.
+    into_opposite: bool = False
+    # The lane left ran against the agent's direction of travel (the way back).
+    from_opposite: bool = False
+
+
 class AgentTrace(BaseModel):
     name: str
     kind: str
@@ -137,6 +150,14 @@ class AgentTrace(BaseModel):
     junction_gap: float | None = None
     # Moves into a neighbouring lane of the same road (None: no road network to tell).
     lane_changes: int | None = None
+    # Every move across a lane boundary outside junctions, in order (same-direction lane
+    # changes and moves into and out of the oncoming lanes).
+    lane_change_log: list[LaneChange] = Field(default_factory=list)
+    # Steps spent in a lane that runs against the agent's travel, outside junctions.
+    opposite_lane_steps: int | None = None
+    # It moved back across a lane boundary within a few seconds of crossing it, i.e. it
+    # wove (a controller fault or an erratic driver), not a deliberate lane change.
+    weaving: bool | None = None
     trajectory: list[TracePoint] = Field(default_factory=list)
 
 

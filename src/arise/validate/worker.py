@@ -41,6 +41,7 @@ from arise.validate.diagnostics import (
     rejections_from_log,
 )
 from arise.validate.gate import Refusal, scan_tokens, scan_tree
+from arise.validate.lanes import LaneReading, find_weaving, read_lanes
 from arise.validate.script_info import CARLA_MODEL, KNOWN_MODELS, ScriptInfo, read_script_info
 from arise.validate.types import (
     AgentTrace,
@@ -244,6 +245,7 @@ def _agent_traces(simulation: Any) -> list[AgentTrace]:
         ]
         blueprint = getattr(obj, "blueprint", None)
         behavior = getattr(obj, "behavior", None)
+        lanes = _lane_reading(simulation, points)
         traces.append(
             AgentTrace(
                 name=name,
@@ -255,7 +257,12 @@ def _agent_traces(simulation: Any) -> list[AgentTrace]:
                 behavior=type(behavior).__name__ if behavior is not None else None,
                 intersection_steps=_steps_in_junctions(simulation, points),
                 junction_gap=_junction_gap(simulation, points),
-                lane_changes=_lane_changes(simulation, points),
+                lane_changes=None if lanes is None else lanes.same_direction_changes,
+                lane_change_log=[] if lanes is None else lanes.changes,
+                opposite_lane_steps=None if lanes is None else lanes.opposite_steps,
+                weaving=None
+                if lanes is None
+                else find_weaving(lanes.changes, float(simulation.timestep)),
                 trajectory=points,
             )
         )
@@ -289,24 +296,16 @@ def _junction_gap(simulation: Any, points: list[TracePoint]) -> float | None:
         return None
 
 
-def _lane_changes(simulation: Any, points: list[TracePoint]) -> int | None:
-    """Changes into another lane of the same lane group, sampled every half second; a road
-    that merely curves or continues into its successor is no lane change."""
+def _lane_reading(simulation: Any, points: list[TracePoint]) -> LaneReading | None:
+    """Lane changes and oncoming-lane use read with the road network (None: no network,
+    or one too odd to read: that must not cost the facts of a run that worked)."""
     network = _network(simulation)
     if network is None:
         return None
-    changes, previous = 0, None
     try:
-        for point in points[::5]:
-            lane = network.laneAt((point.x, point.y))
-            if lane is None:
-                continue
-            if previous is not None and lane is not previous and lane.group is previous.group:
-                changes += 1
-            previous = lane
-    except Exception:  # an odd network must not cost the facts of a run that worked
+        return read_lanes(network, points)
+    except Exception:
         return None
-    return changes
 
 
 def _scene_params(scene: Any) -> dict[str, str]:

@@ -9,6 +9,7 @@ records what it could not act out.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from typing import Any
 
 from scenic.core.vectors import Vector
@@ -29,10 +30,15 @@ AUTOPILOT_LOOKAHEAD_MIN = 5.0  # metres
 AUTOPILOT_GAP = 8.0  # metres kept to whatever is ahead
 # Speed up to which the lateral gains apply as tuned; above it they shrink with 1/v^2.
 LATERAL_REFERENCE_SPEED = 15.0  # m/s
+# The same for lane changes, whose gains are twice as high.
+LANE_CHANGE_REFERENCE_SPEED = 12.0  # m/s
 
 
 class SpeedScheduledLateralController(PIDLateralController):
-    """Scenic's lateral PID with its output scaled by (v_ref / v)^2 above v_ref (15 m/s).
+    """Scenic's lateral PID with its output scaled by (v_ref / v)^2 above v_ref.
+
+    v_ref is 15 m/s for lane following and 12 m/s for lane changes, whose gains are twice
+    as high (a lane change at 15 m/s and above overshot into the lane beyond).
 
     In this physics (as on a real car) the yaw rate a steering input gives grows with
     speed, and the cross-track error the PID sees grows with speed again: the loop gain
@@ -42,15 +48,36 @@ class SpeedScheduledLateralController(PIDLateralController):
     at any speed up to the KB's 35 m/s; CARLA's own agents schedule their gains similarly.
     """
 
-    def __init__(self, agent: Any, K_P: float, K_D: float, K_I: float, dt: float):
+    def __init__(
+        self,
+        agent: Any,
+        K_P: float,
+        K_D: float,
+        K_I: float,
+        dt: float,
+        clock: Callable[[], int] | None = None,
+        reference_speed: float = LATERAL_REFERENCE_SPEED,
+    ):
         super().__init__(K_P=K_P, K_D=K_D, K_I=K_I, dt=dt)
         self.agent = agent
+        self.reference_speed = reference_speed
+        self.clock = clock
+        self.last_step: int | None = None
 
     def run_step(self, cte: float) -> float:
+        # A behavior that hands the car to another one (FollowTrajectoryBehavior gives it
+        # to TurnBehavior inside a junction) comes back to an error and an integral from
+        # before: without a fresh start the derivative kicks the car across the lane it
+        # has just entered.
+        now = self.clock() if self.clock is not None else None
+        if now is not None and self.last_step is not None and now - self.last_step > 1:
+            self.last_error = cte
+            self.ITerm = 0.0
+        self.last_step = now
         output = float(super().run_step(cte))
         speed = float(getattr(self.agent, "speed", 0.0) or 0.0)
-        if speed > LATERAL_REFERENCE_SPEED:
-            output *= (LATERAL_REFERENCE_SPEED / speed) ** 2
+        if speed > self.reference_speed:
+            output *= (self.reference_speed / speed) ** 2
         return output
 
 
@@ -275,7 +302,7 @@ class OfflineCarlaSimulation(DrivingSimulation):
 
     # --- controllers tuned for this physics ------------------------------------------
     def _pid_pair(
-        self, agent: Any, lateral: tuple[float, float, float], scheduled: bool = False
+        self, agent: Any, lateral: tuple[float, float, float], scheduled: float | None = None
     ) -> tuple[Any, Any]:
         dt = self.timestep
         if getattr(agent, "isCar", False):
@@ -283,17 +310,27 @@ class OfflineCarlaSimulation(DrivingSimulation):
         else:
             lon = PIDLongitudinalController(K_P=0.25, K_D=0.025, K_I=0.0, dt=dt)
         kp, kd, ki = lateral
-        if scheduled:
-            return lon, SpeedScheduledLateralController(agent, K_P=kp, K_D=kd, K_I=ki, dt=dt)
+        if scheduled is not None:
+            return lon, SpeedScheduledLateralController(
+                agent,
+                K_P=kp,
+                K_D=kd,
+                K_I=ki,
+                dt=dt,
+                clock=lambda: int(self.currentTime),
+                reference_speed=scheduled,
+            )
         return lon, PIDLateralController(K_P=kp, K_D=kd, K_I=ki, dt=dt)
 
     def getLaneFollowingControllers(self, agent: Any) -> tuple[Any, Any]:
-        # Only lane following is scheduled: that is where the weave was, and turns and lane
-        # changes are short maneuvers whose agility the knowledge base's entries rely on.
-        return self._pid_pair(agent, (0.1, 0.1, 0.02), scheduled=True)
+        # Turns are not scheduled: they run slowly, and their agility is what lets a fast
+        # adversary follow its connecting lane through a junction.
+        return self._pid_pair(agent, (0.1, 0.1, 0.02), scheduled=LATERAL_REFERENCE_SPEED)
 
     def getTurningControllers(self, agent: Any) -> tuple[Any, Any]:
         return self._pid_pair(agent, (0.2, 0.2, 0.2))
 
     def getLaneChangingControllers(self, agent: Any) -> tuple[Any, Any]:
-        return self._pid_pair(agent, (0.2, 0.2, 0.02))
+        # Twice the lane-following gains: scheduled from a lower speed, or a lane change
+        # at 15 m/s and above overshoots into the lane beyond and comes back.
+        return self._pid_pair(agent, (0.2, 0.2, 0.02), scheduled=LANE_CHANGE_REFERENCE_SPEED)
