@@ -161,6 +161,17 @@ class EgoManeuver(StrEnum):
     CHANGE_LANE = "change_lane"
 
 
+class EgoPlan(StrEnum):
+    """What the ego does besides driving its route, when the description says so; each is
+    a tag of the geometry entries that act it out."""
+
+    CHANGE_AND_RETURN = "ego_returns"  # changes lanes, then back to its own
+    BYPASS = "ego_bypass"  # goes round a blocker through the oncoming lane, then back
+    STOP_THEN_GO = "ego_stop_then_go"  # stops at the stop line or a red light, then goes
+    YIELD_THEN_GO = "ego_yields"  # waits for the way to be clear, then turns or goes
+    PULL_OVER = "ego_pulls_over"  # pulls over to the kerb and stops
+
+
 class Side(StrEnum):
     """Which way the ego changes lanes, when the description says."""
 

@@ -35,6 +35,7 @@ from arise.vocabulary import (
     AdversaryManeuver,
     AdversaryType,
     EgoManeuver,
+    EgoPlan,
     RelativePosition,
     RoadType,
     Side,
@@ -292,6 +293,7 @@ def ground(description: str, answer: ExtractionAnswer) -> Grounded:
         adversary_stationary="adversary_stationary" in facts,
         ego_stopped="ego_stopped" in facts,
         ego_on_ramp="ego_on_ramp" in facts,
+        ego_plan=EgoPlan(facts["ego_plan"].value) if "ego_plan" in facts else None,
         start_detail=(
             StartDetail(facts["start_detail"].value) if "start_detail" in facts else None
         ),

@@ -18,6 +18,7 @@ from arise.vocabulary import (
     AdversaryManeuver,
     AdversaryType,
     EgoManeuver,
+    EgoPlan,
     RelativePosition,
     StartDetail,
 )
@@ -544,6 +545,76 @@ def read_ego_on_ramp(reading: Reading) -> None:
             return
 
 
+# What the ego does besides driving its route, in words whose subject is the ego; the
+# first that matches wins, in this order.
+_EGO_PLANS: tuple[tuple[EgoPlan, re.Pattern[str]], ...] = (
+    (
+        EgoPlan.PULL_OVER,
+        re.compile(
+            r"\bpull\w* over\b|\bpull\w* (?:in )?to the (?:kerb|curb|side of the road|shoulder)\b",
+            re.I,
+        ),
+    ),
+    (
+        EgoPlan.BYPASS,
+        re.compile(
+            r"\bbypass\w*|\b(?:go\w*|driv\w*|steer\w*|pass\w*|get\w*) (?:\w+ ){0,3}?(?:a)?round\b"
+            r"[^.;]{0,60}?\b(?:opposite|oncoming) lane|\b(?:us\w*|through) the (?:opposite|"
+            r"oncoming) lane",
+            re.I,
+        ),
+    ),
+    (
+        EgoPlan.CHANGE_AND_RETURN,
+        re.compile(
+            r"\b(?:returns?|returning|goes back|moves back|pulls back|changes back|cuts back)\b"
+            r"[^.;]{0,30}?\b(?:lane|original|own)",
+            re.I,
+        ),
+    ),
+    (
+        EgoPlan.STOP_THEN_GO,
+        re.compile(
+            r"\bstops?\b[^.;]{0,50}?\b(?:then|and then|before)\s+(?:goes|going|proceeds?|"
+            r"proceeding|drives? on|moves? off|pulls? away|continues?|sets? off)\b",
+            re.I,
+        ),
+    ),
+    (
+        EgoPlan.YIELD_THEN_GO,
+        re.compile(
+            r"\b(?:yields?|yielding|gives? way|giving way)\b|\bwaits? (?:for|until)\b[^.;]{0,40}?"
+            r"\b(?:clear|gap|pass\w*|oncoming|cross(?:ing)? traffic)\b",
+            re.I,
+        ),
+    ),
+)
+
+
+def _verb_subject(cast: Cast, position: int) -> Mention | str | None:
+    """Like `_subject`, but a verb joined by "and (then)" ("changes lanes to pass a bus and
+    then returns") belongs to the sentence's first actor, not the one named just before."""
+    head = cast.text[:position]
+    if re.search(r"\b(?:and|then)\s+(?:then\s+)?$", head, re.I):
+        sentence_start = max(head.rfind(c) for c in ".;!?") + 1
+        return cast.subject_after(sentence_start)
+    return _subject(cast, position)
+
+
+def read_ego_plan(reading: Reading) -> None:
+    """What the ego does besides driving its route (pull over, bypass, change lanes and
+    back, stop then go, yield then go), from words whose subject is the ego."""
+    for plan, pattern in _EGO_PLANS:
+        for match in pattern.finditer(reading.cast.text):
+            if _verb_subject(reading.cast, match.start()) == "ego":
+                reading.facts["ego_plan"] = GroundedFact(
+                    name="ego_plan", value=plan.value, source=FactSource.TEXT, quote=match.group(0)
+                )
+                if plan is EgoPlan.STOP_THEN_GO:
+                    reading.facts.pop("ego_stopped", None)  # it stops, but not for good
+                return
+
+
 def read_ego_stopped(reading: Reading) -> None:
     """Whether the ego stands still for the whole scene, from words whose subject it is."""
     for match in _EGO_HELD.finditer(reading.cast.text):
@@ -639,5 +710,6 @@ def read_description(description: str, adversary_quote: str | None = None) -> Re
     read_maneuvers(reading)
     read_start_detail(reading)
     read_ego_stopped(reading)
+    read_ego_plan(reading)
     read_ego_on_ramp(reading)
     return reading

@@ -31,6 +31,7 @@ from arise.vocabulary import (
     AdversaryManeuver,
     Approach,
     EgoManeuver,
+    EgoPlan,
     RelativePosition,
     RoadType,
     StartDetail,
@@ -53,6 +54,8 @@ _EXIT_WORDS = re.compile(
 EGO_LANE_CHANGE_TAG = "ego_lane_change"
 #: A geometry whose ego comes up the on-ramp; only an ego the text puts there gets one.
 EGO_ON_RAMP_TAG = "ego_on_ramp"
+#: Geometry tags of what the ego does besides driving its route (`EgoPlan`).
+PLAN_TAGS = frozenset(plan.value for plan in EgoPlan)
 #: A geometry whose ego stands still for the whole scene; only a stopped ego gets one.
 EGO_STOPPED_TAG = "ego_stopped"
 MANEUVER_TAGS: dict[EgoManeuver, tuple[str, ...]] = {
@@ -310,6 +313,8 @@ def _geometry_pool(
         tags = set(entry.tags) | set(entry.id.split(".")[-1].split("_"))
         if spec.road_type is RoadType.MERGE and (EGO_ON_RAMP_TAG in tags) != spec.ego_on_ramp:
             return False  # the ego on the ramp only when the text puts it there
+        if spec.ego_plan is EgoPlan.BYPASS:
+            return True  # a bypass reads as a lane change, or as going straight past
         turns = {"left_turn", "right_turn", "unprotected_left_turn"}
         changes = EGO_LANE_CHANGE_TAG in tags
         if spec.ego_maneuver is EgoManeuver.GO_STRAIGHT:
@@ -326,8 +331,16 @@ def _geometry_pool(
     def drives(entry: Entry) -> bool:
         return EGO_STOPPED_TAG not in entry.tags
 
+    def plan_fits(entry: Entry) -> bool:
+        # An ego that stops, yields, pulls over or goes round only when the text says.
+        plans = set(entry.tags) & PLAN_TAGS
+        return spec.ego_plan.value in plans if spec.ego_plan else not plans
+
     road, maneuver = spec.road_type, spec.ego_maneuver
-    placeable_entries = [e for e in entries if placeable(e)]
+    placeable_entries = [e for e in entries if placeable(e) and plan_fits(e)]
+    if spec.ego_plan is not None and not any(road_fits(e) for e in placeable_entries):
+        notes.append(f"no geometry entry acts out {spec.ego_plan.value} on {road}; left out")
+        placeable_entries = [e for e in entries if placeable(e) and not set(e.tags) & PLAN_TAGS]
     for fits, note in (
         (lambda e: road_fits(e) and maneuver_fits(e) and stop_fits(e), None),
         (

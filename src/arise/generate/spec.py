@@ -21,6 +21,7 @@ from arise.vocabulary import (
     AdversaryManeuver,
     AdversaryType,
     EgoManeuver,
+    EgoPlan,
     RelativePosition,
     RoadType,
     Side,
@@ -149,6 +150,10 @@ class ScenarioSpec(BaseModel):
         default=None,
         description="which end of the lane beside the ego, or which corner of the street a "
         "turning ego enters, the adversary starts at, if the text says",
+    )
+    ego_plan: EgoPlan | None = Field(
+        default=None,
+        description="what the ego does besides driving its route (pull over, bypass, ...)",
     )
     ego_on_ramp: bool = Field(
         default=False, description="the text says the ego comes up an on-ramp and merges"
