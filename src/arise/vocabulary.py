@@ -101,6 +101,7 @@ class StartDetail(StrEnum):
     end of the lane beside the ego, or which corner of the street a turning ego enters."""
 
     FROM_BEHIND = "from_behind"  # comes up from behind ("approaching from behind on its right")
+    AHEAD = "ahead"  # ends up ahead of the ego ("merged into its lane ahead of it")
     EXIT_CROSSING = "exit_crossing"  # on the crossing of the street a turning ego enters
     EXIT_FAR_CORNER = "exit_far_corner"  # from that crossing's far corner
 

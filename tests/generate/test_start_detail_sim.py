@@ -65,6 +65,12 @@ def maps() -> dict[str, frozenset[str]]:
             StartDetail.FROM_BEHIND,
             RelativePosition.ADJACENT_LANE_LEFT,
         ),
+        (
+            "On the freeway, a motorcycle entering from the on-ramp to its right merged into "
+            "the AV's lane ahead of it.",
+            StartDetail.AHEAD,
+            RelativePosition.ADJACENT_LANE_RIGHT,
+        ),
     ],
 )
 def test_the_reader_gives_the_start_detail_and_its_side(

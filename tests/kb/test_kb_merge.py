@@ -206,7 +206,11 @@ def test_a_merge_spec_retrieves_the_merge_entries(
     spec = _spec(RoadType.MERGE, "go_straight", RelativePosition.ADJACENT_LANE_RIGHT, words)
     chosen = {e.id for e in retrieve(spec, kb, BM25Retriever(kb), maps, words).chosen_entries()}
     assert "geometry.highway_merge_through_lane" in chosen
-    assert chosen & {"spawn.on_ramp_beside_right", "spawn.on_ramp_behind_right"}
+    assert chosen & {
+        "spawn.on_ramp_beside_right",
+        "spawn.on_ramp_ahead_right",
+        "spawn.on_ramp_behind_right",
+    }
     assert chosen & {"behavior.merge_from_ramp", "behavior.merge_from_ramp_and_brake"}
 
     words = "the AV entered the freeway from the ramp; a car in the right lane did not let it in"

@@ -433,6 +433,8 @@ _FROM_BEHIND = re.compile(
     r"behind|from the rear|approach\w* from (?:behind|the rear)|overtak\w+|undertak\w+)",
     re.I,
 )
+# "merged into its lane ahead of it": it ends up in front of the ego.
+_AHEAD_OF_EGO = re.compile(r"\b(?:ahead of|in front of) (?:it|the ego|the av)\b", re.I)
 # The crossing of the street a turning ego enters ("in the crosswalk of the street it enters").
 _EXIT_STREET = re.compile(
     r"\b(?:street|road|crosswalk|crossing)\b[^.;]{0,30}?\b(?:it|the ego|the av) (?:enters|is "
@@ -490,6 +492,15 @@ def read_start_detail(reading: Reading) -> None:
                         quote=quote,
                     )
                 return
+        ahead = _AHEAD_OF_EGO.search(words)
+        if ahead is not None and not _FROM_BEHIND.search(words[: ahead.start()]):
+            reading.facts["start_detail"] = GroundedFact(
+                name="start_detail",
+                value=StartDetail.AHEAD.value,
+                source=FactSource.TEXT,
+                quote=ahead.group(0),
+            )
+            return
         behind = _FROM_BEHIND.search(cast.text[start : end + 40])
         if behind is not None and behind.end() <= len(words):
             reading.facts["start_detail"] = GroundedFact(

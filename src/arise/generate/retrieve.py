@@ -239,18 +239,19 @@ def maneuver_fit(wanted: AdversaryManeuver, maneuver: AdversaryManeuver | None) 
 #: Spawn tags that say a start detail (`StartDetail`) of the text.
 DETAIL_TAGS: dict[StartDetail, frozenset[str]] = {
     StartDetail.FROM_BEHIND: frozenset({"behind", "rear"}),
+    StartDetail.AHEAD: frozenset({"ahead"}),
     StartDetail.EXIT_CROSSING: frozenset({"exit_road"}),
     StartDetail.EXIT_FAR_CORNER: frozenset({"far_corner"}),
 }
 
 
 def _detail_tags(spec: ScenarioSpec) -> frozenset[str]:
-    """The spawn tags the spec's start detail asks for; "from behind" only sorts the lanes
-    beside the ego (behind in the ego's own lane is a position of its own)."""
+    """The spawn tags the spec's start detail asks for; "from behind" and "ahead" only sort
+    the lanes beside the ego (its own lane has positions of their own)."""
     detail = spec.start_detail
     if detail is None:
         return frozenset()
-    if detail is StartDetail.FROM_BEHIND and spec.spawn_position not in (
+    if detail in (StartDetail.FROM_BEHIND, StartDetail.AHEAD) and spec.spawn_position not in (
         RelativePosition.ADJACENT_LANE_LEFT,
         RelativePosition.ADJACENT_LANE_RIGHT,
     ):
