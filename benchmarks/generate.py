@@ -6,6 +6,13 @@ Run:  .venv/bin/python benchmarks/generate.py [--limit N] [--mode arise] [--prov
 It is `arise bench` on benchmarks/data/dev_prompts.jsonl with the offline default (LLM
 cache off), so the runs land in OUT/bench.sqlite, an interrupted run resumes, and
 `arise report OUT/bench.sqlite` gives the full evaluation report of the same runs.
+
+With `--prefix-store off|on|both` it runs instead each description in a new
+`arise generate` process, as a user would, with the embedded model's prefix store off or
+on (both: alternately, off then on for each description, in one run). The store starts
+empty in OUT/cache, so the first run with it on builds it. It prints the median seconds
+and tokens per executable script and where the tokens go per call kind; rows go to
+OUT/prefix-runs.jsonl, and an interrupted run resumes.
 Definitions follow the paper: ESR = executable scripts / runs; RCR = mean repair iterations
 (the successful one included) over runs that failed first and then ran.
 """
@@ -13,11 +20,15 @@ Definitions follow the paper: ESR = executable scripts / runs; RCR = mean repair
 from __future__ import annotations
 
 import argparse
+import json
 import os
 import statistics
+import subprocess
+import sys
 import time
 from collections.abc import Sequence
 from pathlib import Path
+from typing import Any
 
 from arise.evaluate.metrics import esr_single, esr_total, rcr
 from arise.evaluate.prompt_file import read_prompts
@@ -56,6 +67,125 @@ def print_table(runs: Sequence[RunRecord]) -> None:
     print(row("**all**", runs))
 
 
+def _one_process(prompt_id: str, text: str, store: str, out: Path) -> dict[str, Any]:
+    """`arise generate` in a new process; the row of what its report.json says."""
+    folder = out / "runs" / f"{prompt_id}-{store}"
+    env = {
+        **os.environ,
+        "ARISE_CACHE_DIR": str(out / "cache"),
+        "ARISE_PREFIX_STORE": store,
+        "ARISE_LLM_CACHE": "off",
+    }
+    started = time.perf_counter()
+    done = subprocess.run(
+        [sys.executable, "-m", "arise", "generate", text, "--out", str(folder), "--no-cache"],
+        env=env,
+        capture_output=True,
+        text=True,
+        timeout=1800,
+    )
+    wall = time.perf_counter() - started
+    report = (
+        json.loads((folder / "report.json").read_text())
+        if (folder / "report.json").is_file()
+        else {}
+    )
+    calls = report.get("llm_calls", [])
+    return {
+        "id": prompt_id,
+        "store": store,
+        "ok": report.get("status") == "executed",
+        "exit": done.returncode,
+        "wall_seconds": round(wall, 2),
+        "run_seconds": report.get("seconds"),
+        "llm": report.get("llm", {}),
+        "calls": [
+            {"label": c.get("label", ""), "latency": c.get("latency"), **c.get("usage", {})}
+            for c in calls
+        ],
+        "load_average": os.getloadavg()[0],
+    }
+
+
+def _median_of(rows: list[dict[str, Any]], pick: Any) -> float:
+    values = [float(pick(r)) for r in rows]
+    return statistics.median(values) if values else float("nan")
+
+
+def prefix_store_runs(args: argparse.Namespace, out: Path) -> None:
+    prompts = read_prompts(PROMPTS)
+    if args.sample:
+        step = len(prompts) / args.sample
+        prompts = [prompts[int(i * step)] for i in range(args.sample)]
+    elif args.limit:
+        prompts = prompts[: args.limit]
+    stores = ["off", "on"] if args.prefix_store == "both" else [args.prefix_store]
+    rows_path = out / "prefix-runs.jsonl"
+    out.mkdir(parents=True, exist_ok=True)
+    rows = (
+        [json.loads(x) for x in rows_path.read_text().splitlines()] if rows_path.is_file() else []
+    )
+    done = {(r["id"], r["store"]) for r in rows}
+    for prompt in prompts:
+        for store in stores:
+            if (prompt.id, store) in done:
+                continue
+            row = _one_process(prompt.id, prompt.description, store, out)
+            rows.append(row)
+            with rows_path.open("a") as fh:
+                fh.write(json.dumps(row) + "\n")
+            print(
+                f"{prompt.id} store {store}: {'executed' if row['ok'] else 'failed'}, "
+                f"{row['wall_seconds']:.0f} s wall, {row['llm'].get('prompt_tokens', 0)} prompt "
+                f"tokens ({row['llm'].get('prompt_tokens_evaluated', 0)} evaluated), "
+                f"load {row['load_average']:.2f}",
+                flush=True,
+            )
+    print_prefix_table(rows)
+
+
+def print_prefix_table(rows: list[dict[str, Any]]) -> None:
+    print(
+        "\n| prefix store | runs | executed | median s per executable script (wall) "
+        "| median prompt tokens | median prompt tokens evaluated | median completion tokens |"
+    )
+    print("|---|---|---|---|---|---|---|")
+    medians: dict[str, float] = {}
+    for store in ("off", "on"):
+        mine = [r for r in rows if r["store"] == store]
+        if not mine:
+            continue
+        ok = [r for r in mine if r["ok"]]
+        medians[store] = _median_of(ok, lambda r: r["wall_seconds"])
+        print(
+            f"| {store} | {len(mine)} | {len(ok)} | {medians[store]:.1f} "
+            f"| {_median_of(ok, lambda r: r['llm'].get('prompt_tokens', 0)):.0f} "
+            f"| {_median_of(ok, lambda r: r['llm'].get('prompt_tokens_evaluated', 0)):.0f} "
+            f"| {_median_of(ok, lambda r: r['llm'].get('completion_tokens', 0)):.0f} |"
+        )
+    if len(medians) == 2:
+        print(f"\nratio off/on of the median seconds: {medians['off'] / medians['on']:.2f}x")
+    print(
+        "\n| call | store | calls | median prompt tokens | median evaluated | median completion "
+        "| median s |"
+    )
+    print("|---|---|---|---|---|---|---|")
+    for label in ("extract", "adapt", "repair"):
+        for store in ("off", "on"):
+            calls = [
+                c for r in rows if r["store"] == store for c in r["calls"] if c["label"] == label
+            ]
+            if not calls:
+                continue
+            print(
+                f"| {label} | {store} | {len(calls)} "
+                f"| {_median_of(calls, lambda c: c.get('prompt_tokens', 0)):.0f} "
+                f"| {_median_of(calls, lambda c: c.get('prompt_tokens_evaluated', 0)):.0f} "
+                f"| {_median_of(calls, lambda c: c.get('completion_tokens', 0)):.0f} "
+                f"| {_median_of(calls, lambda c: c.get('latency') or 0):.1f} |"
+            )
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--limit", type=int, default=None, help="first N prompts only")
@@ -76,8 +206,25 @@ def main() -> None:
         action="store_true",
         help="only print the table of the runs already in OUT/bench.sqlite",
     )
+    parser.add_argument(
+        "--prefix-store",
+        choices=["off", "on", "both"],
+        default=None,
+        help="run each description in a new `arise generate` process with the prefix store "
+        "off, on, or both (alternately); see the module docstring",
+    )
+    parser.add_argument(
+        "--sample", type=int, default=None, help="N prompts spread evenly over the set"
+    )
     args = parser.parse_args()
     out = Path(args.out)
+    if args.prefix_store:
+        if args.summarize:
+            rows_path = out / "prefix-runs.jsonl"
+            print_prefix_table([json.loads(x) for x in rows_path.read_text().splitlines()])
+        else:
+            prefix_store_runs(args, out)
+        return
     with BenchStore(out / "bench.sqlite") as store:
         if not args.summarize:
             prompts = read_prompts(PROMPTS)

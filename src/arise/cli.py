@@ -31,6 +31,7 @@ from arise.evaluate.judge_cli import JUDGE_HELP, judge_command
 from arise.evaluate.search.cli import SEARCH_HELP, search_command
 from arise.evaluate.search.critical import with_critical_search
 from arise.generate.cli import GENERATE_HELP, generate_command
+from arise.generate.warm_cli import WARM_HELP, warm_command
 from arise.kb.cli import app as kb_app
 from arise.llm.cli import app as llm_app
 from arise.paths import cache_dir
@@ -116,6 +117,7 @@ app.command("serve", help=SERVE_HELP)(serve_command)
 app.command("blueprints")(blueprints_command)
 app.command("doctor", help=DOCTOR_HELP)(doctor_command)
 app.add_typer(maps_app, name="maps")
+llm_app.command("warm", help=WARM_HELP)(warm_command)
 app.add_typer(llm_app, name="llm")
 app.add_typer(kb_app, name="kb")
 

@@ -85,6 +85,14 @@ def apply_params(script: str, values: Mapping[str, str]) -> str:
     return _PARAM_LINE.sub(replace, script)
 
 
+def adapt_messages(description: str, listing: str) -> list[Message]:
+    """The tuning call: fixed system prompt, then the description and the parameters."""
+    return [
+        Message("system", load("adapt_system.md")),
+        Message("user", f"Description: {description.strip()}\n\nParameters:\n{listing}"),
+    ]
+
+
 def tune_params(
     description: str,
     entries: list[Entry],
@@ -103,10 +111,7 @@ def tune_params(
         f"- {name} (default {default}) in {entry_id}: {_describe(entries, entry_id)}"
         for name, (default, entry_id) in declared.items()
     )
-    messages = [
-        Message("system", load("adapt_system.md")),
-        Message("user", f"Description: {description.strip()}\n\nParameters:\n{listing}"),
-    ]
+    messages = adapt_messages(description, listing)
     completion = provider.complete(
         messages, temperature=temperature, max_tokens=300, schema=schema, seed=seed
     )

@@ -23,6 +23,7 @@ from arise.llm.cli_options import (
     RecordOption,
     ReplayOption,
 )
+from arise.llm.prefix_store import default_store_dir
 from arise.validate.types import Simulator, confinement_summary
 
 console = Console(soft_wrap=True)
@@ -150,6 +151,14 @@ def generate_command(
                 if not as_json:
                     mark = "[green]✔[/green]" if run.ok else "[red]✘[/red]"
                     console.print(f"{mark} {folder}: {run.summary()}")
+                    if run.usage.prefixes_built:
+                        console.print(
+                            f"  prefix store: first run, kept the model's state after "
+                            f"{run.usage.prefixes_built} fixed prompt prefix(es) in "
+                            f"{default_store_dir()}; later runs load it instead of reading "
+                            "them again",
+                            highlight=False,
+                        )
                     labels = [
                         a.check.sandbox.label if a.check and a.check.sandbox else None
                         for a in run.attempts

@@ -228,6 +228,7 @@ class Generator:
             run.end(Outcome(RunStatus.REFUSED, refusal))
             return run
         usage_before = self._provider.total if self._provider is not None else Usage()
+        calls_before = len(self._provider.calls) if self._provider is not None else 0
         outcome: Outcome | None = None
         try:
             outcome = self._run(run, emit)
@@ -237,6 +238,7 @@ class Generator:
             run.seconds = time.perf_counter() - started
             if self._provider is not None:
                 run.usage = self._provider.total - usage_before
+                run.llm_calls = [c.as_dict() for c in self._provider.calls[calls_before:]]
             if outcome is not None:
                 run.end(outcome)
             if run.ok and run.spec is not None and run.final_check is not None:
@@ -298,6 +300,7 @@ class Generator:
         the attempts. Returns how the run ended."""
         options = self.options
         emit(StageStarted(RunStage.EXTRACT))
+        self.provider.label = "extract"
         extraction = extract_spec(
             run.description, self.provider, temperature=options.temperature, seed=options.seed
         )
@@ -320,6 +323,7 @@ class Generator:
         try:
             params: dict[str, str] = {}
             if options.mode is not Mode.CHATSCENE and run.retrieval.chosen:
+                self.provider.label = "adapt"
                 params, notes = tune_params(
                     run.description,
                     # The other actors' copies keep their defaults: the model tunes the
@@ -355,6 +359,7 @@ class Generator:
                 ),
             )
         )
+        self.provider.label = "repair"
         return repair_loop(
             run,
             draft.script,

@@ -141,6 +141,11 @@ class RepairContext:
         )
 
 
+def repair_messages(request: str) -> list[Message]:
+    """The repair call: fixed system prompt, then the scenario, error and section."""
+    return [Message("system", load("repair_system.md")), Message("user", request)]
+
+
 def llm_repair(
     context: RepairContext, script: str, diagnostic: Diagnostic, section: str
 ) -> RepairStep:
@@ -165,7 +170,7 @@ def llm_repair(
         + f"Return the corrected {section} section."
     )
     completion = context.provider.complete(
-        [Message("system", load("repair_system.md")), Message("user", user)],
+        repair_messages(user),
         temperature=context.temperature,
         max_tokens=700,
         seed=context.seed,

@@ -134,6 +134,8 @@ class Generation:
     draft: Draft | None = None
     attempts: list[Attempt] = field(default_factory=list)
     usage: Usage = field(default_factory=Usage)
+    #: one entry per model call: what it was for, its tokens and how its prefix was met
+    llm_calls: list[dict[str, Any]] = field(default_factory=list)
     seconds: float = 0.0
     out_dir: Path | None = None
     # The deterministic conformity check of the script that ran (set when the run ends).
@@ -263,6 +265,7 @@ class Generation:
             "semantic_gate": self.gate_report(),
             "attempts": [a.as_dict() for a in self.attempts],
             "llm": self.usage.as_dict(),
+            "llm_calls": self.llm_calls,
             "seconds": round(self.seconds, 3),
             "simulation": (
                 final.simulation.model_dump(mode="json", exclude={"agents"})

@@ -2,9 +2,11 @@
 
 One model stays loaded per process (loading costs ~1.3 s and ~2 GB), and its KV state is
 kept between calls: llama-cpp-python compares the new prompt's tokens with the ones it
-already evaluated and only evaluates the rest. Calls that share a long prefix (the same
-system prompt and few-shot examples) therefore pay for that prefix once. An optional RAM
-state cache (``prefix_cache_mb``) also keeps prefixes across interleaved prompts.
+already evaluated and only evaluates the rest. The fixed prefix of each prompt (system
+prompt and few-shot examples) is evaluated on its own and its state kept, in memory and
+in the disk prefix store (`local_prefix`, `prefix_store`), so interleaved prompts and new
+processes skip it. An optional RAM state cache (``prefix_cache_mb``) is llama-cpp-python's
+own whole-prompt cache.
 
 The thread count is a parameter because on 2 cores a second busy process makes two
 threads much slower than one (generation fell from ~16 to under 1 token/s in our
@@ -21,12 +23,16 @@ from pathlib import Path
 from typing import Any
 
 from arise.llm.base import BaseProvider
+from arise.llm.local_prefix import PrefixKeeper, PrefixOutcome, prefix_tokens
 from arise.llm.model_files import DEFAULT_MODEL, default_model_path, how_to_get
+from arise.llm.prefix_store import DEFAULT_LIMIT_MB, PrefixStore
 from arise.llm.structured import response_format
 from arise.llm.types import (
     Capabilities,
     Completion,
+    Message,
     ModelNotInstalled,
+    PrefixUse,
     ProviderError,
     ProviderUnavailable,
     Request,
@@ -34,7 +40,8 @@ from arise.llm.types import (
 )
 
 _LOCK = threading.RLock()  # one Llama is not thread-safe; calls in a process take turns
-_LOADED: dict[str, Any] = {}  # {"key": (path, n_ctx, cache_mb), "llama": Llama, "seconds": float}
+_LOADED: dict[str, Any] = {}  # {"key": (path, n_ctx, cache_mb), "llama": Llama, "keeper": ...}
+_N_BATCH = 512
 
 
 def _import_llama_cpp() -> Any:
@@ -73,7 +80,7 @@ def _load(path: Path, n_ctx: int, threads: int, cache_mb: int) -> tuple[Any, flo
         llama = llama_cpp.Llama(
             model_path=str(path),
             n_ctx=n_ctx,
-            n_batch=512,
+            n_batch=_N_BATCH,
             n_threads=threads,
             n_threads_batch=threads,
             verbose=False,
@@ -83,7 +90,14 @@ def _load(path: Path, n_ctx: int, threads: int, cache_mb: int) -> tuple[Any, flo
     if cache_mb > 0:
         llama.set_cache(llama_cpp.LlamaRAMCache(capacity_bytes=cache_mb << 20))
     seconds = time.perf_counter() - started
-    _LOADED.update(key=key, llama=llama, seconds=seconds, threads=threads)
+    # What changes the numbers of a prefix's state besides the model and the tokens.
+    state_settings: dict[str, object] = {
+        "n_ctx": n_ctx,
+        "n_batch": _N_BATCH,
+        "llama_cpp": getattr(llama_cpp, "__version__", "?"),
+    }
+    keeper = PrefixKeeper(llama, llama_cpp, str(path), state_settings)
+    _LOADED.update(key=key, llama=llama, seconds=seconds, threads=threads, keeper=keeper)
     return llama, seconds
 
 
@@ -161,6 +175,9 @@ class LocalProvider(BaseProvider):
         threads: int = 2,
         n_ctx: int = 8192,
         prefix_cache_mb: int = 0,
+        prefix_store: bool = True,
+        prefix_store_mb: int = DEFAULT_LIMIT_MB,
+        store_dir: Path | None = None,
         capabilities: Capabilities | None = None,
     ) -> None:
         self.name = name
@@ -178,6 +195,7 @@ class LocalProvider(BaseProvider):
         self._watch = CpuWatch() if self.threads == 0 else None
         self.n_ctx = int(n_ctx)
         self.prefix_cache_mb = int(prefix_cache_mb)
+        self.store = PrefixStore(store_dir, prefix_store_mb) if prefix_store else None
         self.capabilities = capabilities or Capabilities(
             structured="json_object_schema", max_context=self.n_ctx, seed=True, local=True
         )
@@ -193,12 +211,36 @@ class LocalProvider(BaseProvider):
             return self.threads or 1
         return auto_threads(self._watch.others())
 
+    def _prefix(self, llama: Any, llama_cpp: Any, request: Request) -> PrefixOutcome:
+        """Bring the context to the state after the request's fixed prefix (lock held)."""
+        keeper: PrefixKeeper = _LOADED["keeper"]
+        tokens = prefix_tokens(llama, llama_cpp, request.messages)
+        if tokens is None:
+            keeper.forget_context()
+            return PrefixOutcome(PrefixUse.NONE, 0, 0.0)
+        return keeper.ensure(tokens, self.store)
+
+    def warm(self, prefixes: dict[str, list[Message]]) -> dict[str, PrefixOutcome]:
+        """Make sure each named prefix is in the store (``arise llm warm``)."""
+        llama_cpp = _import_llama_cpp()
+        outcomes: dict[str, PrefixOutcome] = {}
+        with _LOCK:
+            llama, _ = _load(self.path, self.n_ctx, self._threads_now(), self.prefix_cache_mb)
+            for name, messages in prefixes.items():
+                # the prefix is every message but the last: add a placeholder last one
+                request = Request.build([*messages, Message("user", "-")])
+                outcomes[name] = self._prefix(llama, llama_cpp, request)
+        return outcomes
+
     def send(self, request: Request) -> Completion:
         llama_cpp = _import_llama_cpp()
         threads = self._threads_now()
         with _LOCK:
             llama, load_seconds = _load(self.path, self.n_ctx, threads, self.prefix_cache_mb)
             _set_threads(llama, threads)
+            llama_cpp.llama_perf_context_reset(llama.ctx)
+            started = time.perf_counter()
+            prefix = self._prefix(llama, llama_cpp, request)
             probe = _FirstToken()
             kwargs: dict[str, Any] = {
                 "messages": [m.as_dict() for m in request.messages],
@@ -215,8 +257,6 @@ class LocalProvider(BaseProvider):
             )
             if fmt is not None:
                 kwargs["response_format"] = fmt
-            llama_cpp.llama_perf_context_reset(llama.ctx)
-            started = time.perf_counter()
             try:
                 reply = llama.create_chat_completion(**kwargs)
             except ValueError as exc:
@@ -230,8 +270,11 @@ class LocalProvider(BaseProvider):
             perf = llama_cpp.llama_perf_context(llama.ctx)
         choice = reply["choices"][0]
         usage = reply.get("usage") or {}
-        details = {
+        details: dict[str, Any] = {
             "threads": threads,
+            "prefix": prefix.use.value,
+            "prefix_tokens": prefix.tokens,
+            "prefix_seconds": round(prefix.seconds, 3),
             "prompt_tokens_evaluated": int(perf.n_p_eval),
             "prompt_eval_seconds": perf.t_p_eval_ms / 1000.0,
             "generated_tokens_evaluated": int(perf.n_eval),
@@ -246,6 +289,9 @@ class LocalProvider(BaseProvider):
                 prompt_tokens=int(usage.get("prompt_tokens", 0)),
                 completion_tokens=int(usage.get("completion_tokens", 0)),
                 seconds=latency,
+                prompt_tokens_evaluated=int(perf.n_p_eval),
+                prefixes_built=int(prefix.use is PrefixUse.BUILT),
+                prefixes_loaded=int(prefix.use is PrefixUse.LOADED),
             ),
             model=self.model,
             latency=latency,

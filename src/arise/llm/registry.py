@@ -32,6 +32,8 @@ def build_backend(profile: ProviderSettings, run_index: int = 0) -> BaseProvider
             threads=profile.threads,
             n_ctx=profile.n_ctx,
             prefix_cache_mb=profile.prefix_cache_mb,
+            prefix_store=profile.prefix_store,
+            prefix_store_mb=profile.prefix_store_mb,
             capabilities=caps,
         )
     if profile.kind == "openai":

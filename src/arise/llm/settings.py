@@ -40,7 +40,9 @@ class ProviderSettings:
     model_path: str | None = None
     threads: int = 2  # 0 or "auto": pick per call from how busy the CPU is
     n_ctx: int = 8192
-    prefix_cache_mb: int = 0  # >0: also keep prefixes across interleaved prompts (RAM)
+    prefix_cache_mb: int = 0  # >0: llama-cpp-python's own whole-prompt RAM cache
+    prefix_store: bool = True  # keep fixed prompt prefixes' states on disk for new processes
+    prefix_store_mb: int = 512  # size bound of that store (least recently used dropped)
     # replay only
     cassette: str | None = None
 
@@ -186,8 +188,9 @@ def _coerce(name: str, value: Any, where: str) -> Any:
     if "bool" in expected:
         if isinstance(value, bool):
             return value
-        if isinstance(value, str) and value.lower() in ("1", "true", "yes", "0", "false", "no"):
-            return value.lower() in ("1", "true", "yes")
+        words = ("1", "true", "yes", "on", "0", "false", "no", "off")
+        if isinstance(value, str) and value.lower() in words:
+            return value.lower() in ("1", "true", "yes", "on")
     elif "int" in expected and "str" not in expected:
         try:
             return int(value)
@@ -276,6 +279,8 @@ def apply_env(settings: Settings, env: dict[str, str]) -> Settings:
         "ARISE_LLM_CTX": "n_ctx",
         "ARISE_LLM_TIMEOUT": "timeout",
         "ARISE_REPLAY": "cassette",
+        "ARISE_PREFIX_STORE": "prefix_store",
+        "ARISE_PREFIX_STORE_MB": "prefix_store_mb",
     }
     values = {attr: env[var] for var, attr in per_provider.items() if env.get(var)}
     profiles = dict(settings.profiles)

@@ -9,7 +9,8 @@ from __future__ import annotations
 import hashlib
 import json
 from collections.abc import Iterable, Mapping, Sequence
-from dataclasses import asdict, dataclass, field, replace
+from dataclasses import asdict, dataclass, field, fields, replace
+from enum import StrEnum
 from typing import Any, Literal
 
 from pydantic import BaseModel
@@ -25,6 +26,16 @@ Role = Literal["system", "user", "assistant"]
 #: - ``tool``: a forced tool call whose input schema is the schema (Anthropic)
 #: - ``prompt``: nothing native; the schema goes into the prompt and the reply is parsed
 StructuredStyle = Literal["json_schema", "json_object_schema", "json_object", "tool", "prompt"]
+
+
+class PrefixUse(StrEnum):
+    """How the embedded model got past a call's fixed prompt prefix."""
+
+    NONE = "none"  # the call has no prefix (one message), or the template cannot split it
+    IN_CONTEXT = "in_context"  # the context already held it
+    LOADED = "loaded"  # restored from memory or the disk store
+    BUILT = "built"  # evaluated and written to the disk store
+    EVALUATED = "evaluated"  # evaluated, the store being off (or not writable)
 
 
 @dataclass(frozen=True)
@@ -78,24 +89,20 @@ class Usage:
     prompt_tokens: int = 0
     completion_tokens: int = 0
     seconds: float = 0.0
+    #: prompt tokens the embedded model actually evaluated (the rest came from a prefix)
+    prompt_tokens_evaluated: int = 0
+    prefixes_built: int = 0  # prefix-store entries this usage wrote
+    prefixes_loaded: int = 0  # prefixes restored instead of evaluated
 
     def __add__(self, other: Usage) -> Usage:
         return Usage(
-            calls=self.calls + other.calls,
-            cached_calls=self.cached_calls + other.cached_calls,
-            prompt_tokens=self.prompt_tokens + other.prompt_tokens,
-            completion_tokens=self.completion_tokens + other.completion_tokens,
-            seconds=self.seconds + other.seconds,
+            **{f.name: getattr(self, f.name) + getattr(other, f.name) for f in fields(self)}
         )
 
     def __sub__(self, other: Usage) -> Usage:
         """What was spent between two readings of a running total."""
         return Usage(
-            calls=self.calls - other.calls,
-            cached_calls=self.cached_calls - other.cached_calls,
-            prompt_tokens=self.prompt_tokens - other.prompt_tokens,
-            completion_tokens=self.completion_tokens - other.completion_tokens,
-            seconds=self.seconds - other.seconds,
+            **{f.name: getattr(self, f.name) - getattr(other, f.name) for f in fields(self)}
         )
 
     @property

@@ -1,0 +1,95 @@
+"""The prefix store with the real embedded model, each step in a new process as a user
+runs it: the answers are the same tokens with the store off, while it is built and when it
+is loaded; a damaged entry is rebuilt by `arise llm warm`."""
+
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+from typer.testing import CliRunner
+
+from arise.cli import app
+from arise.llm import local
+from arise.llm.prefix_store import PrefixStore
+
+pytestmark = pytest.mark.slow
+
+DESCRIPTION = "The ego car goes straight while a cyclist on the right front swerves into its lane."
+
+# One process: the extraction call greedy, then sampled with a seed; prints what came back.
+_CALLS = """
+import json, sys
+from arise.generate.extract import extraction_messages
+from arise.llm.local import LocalProvider
+from arise.llm.types import Request
+provider = LocalProvider(threads=2)
+out = []
+for temperature, seed in ((0.0, None), (0.8, 7)):
+    request = Request.build(
+        extraction_messages(sys.argv[1]), temperature=temperature, max_tokens=48, seed=seed
+    )
+    reply = provider.send(request)
+    out.append({"text": reply.text, "prefix": reply.details["prefix"],
+                "evaluated": reply.usage.prompt_tokens_evaluated,
+                "prompt": reply.usage.prompt_tokens})
+print(json.dumps(out))
+"""
+
+
+def _run(env: dict[str, str]) -> list[dict[str, object]]:
+    done = subprocess.run(
+        [sys.executable, "-c", _CALLS, DESCRIPTION],
+        env=env,
+        capture_output=True,
+        text=True,
+        timeout=600,
+        check=True,
+    )
+    result: list[dict[str, object]] = json.loads(done.stdout.strip().splitlines()[-1])
+    return result
+
+
+def test_the_store_never_changes_an_answer(model_path: Path, tmp_path: Path) -> None:
+    env = {**os.environ, "ARISE_CACHE_DIR": str(tmp_path / "cache")}
+    off = _run({**env, "ARISE_PREFIX_STORE": "off"})
+    assert PrefixStore(tmp_path / "cache" / "prefix-store").entries() == [], "off writes nothing"
+    built = _run(env)
+    loaded = _run(env)
+    for calls in (off, built, loaded):
+        assert [c["text"] for c in calls] == [c["text"] for c in off]
+    assert off[0]["text"] != off[1]["text"] or off[0]["text"], "two real answers"
+    assert [c["prefix"] for c in off] == ["evaluated", "in_context"]
+    assert [c["prefix"] for c in built] == ["built", "in_context"]
+    assert [c["prefix"] for c in loaded] == ["loaded", "in_context"]
+    prompt = int(str(loaded[0]["prompt"]))
+    evaluated = int(str(loaded[0]["evaluated"]))
+    assert prompt > 800 and evaluated < 120, "a loaded prefix is not read again"
+    assert int(str(off[0]["evaluated"])) >= prompt - 1
+
+
+def test_warm_builds_and_rebuilds_a_damaged_entry(model_path: Path) -> None:
+    local.unload()  # states other tests left in memory belong to their own stores
+    runner = CliRunner()
+    first = runner.invoke(app, ["llm", "warm"])
+    assert first.exit_code == 0, first.output
+    assert first.output.count("built and stored") == 3, first.output
+    store = PrefixStore()
+    entries = store.entries()
+    assert len(entries) == 3
+    victim = entries[0]
+    blob = bytearray(victim.read_bytes())
+    blob[len(blob) // 2] ^= 0x55
+    victim.write_bytes(bytes(blob))
+    local.unload()  # a new process would not hold the states in memory either
+    second = runner.invoke(app, ["llm", "warm"])
+    assert second.exit_code == 0, second.output
+    assert second.output.count("already stored") == 2
+    assert second.output.count("built and stored") == 1
+    assert "checksum mismatch" in second.output
+    cleared = runner.invoke(app, ["llm", "warm", "--clear"])
+    assert "removed 3 stored prefix(es)" in cleared.output
