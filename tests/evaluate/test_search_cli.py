@@ -33,6 +33,25 @@ runner = CliRunner()
             "unknown sampler 'sa'",
         ),
         (["search", str(DATA / "base_crossing.scenic"), "--executor", "dask"], "unknown executor"),
+        (
+            ["search", str(DATA / "base_crossing.scenic"), "--objective", "custom"],
+            "--objective custom needs --expression",
+        ),
+        (
+            [
+                "search",
+                str(DATA / "base_crossing.scenic"),
+                "--objective",
+                "custom",
+                "--expression",
+                "__import__('os').system('true')",
+            ],
+            "is not allowed in an objective",
+        ),
+        (
+            ["search", str(DATA / "base_crossing.scenic"), "--expression", "min_ttc"],
+            "--expression goes with --objective custom",
+        ),
     ],
 )
 def test_bad_input_is_one_line(args: list[str], message: str, tmp_path: Path) -> None:
@@ -66,6 +85,26 @@ def test_a_short_search_writes_its_files(tmp_path: Path) -> None:
     again = runner.invoke(app, [*args, "--sampler", "random", "--no-replay", "--out", str(out)])
     assert again.exit_code == 0, again.output
     assert json.loads((out / "search.json").read_text())["searches"][0]["resumed"] == 2
+
+
+@pytest.mark.slow
+def test_a_custom_objective_scores_every_trial_from_its_trace(tmp_path: Path) -> None:
+    pytest.importorskip("verifai", reason="the verifai extra is not installed")
+    out = tmp_path / "out"
+    expression = "min_ttc + 0.5 * min_distance"
+    args = ["search", str(DATA / "verifai" / "cut_in.scenic"), "--trials", "2", "--no-replay"]
+    args += ["--sampler", "halton", "--objective", "custom", "--expression", expression]
+    result = runner.invoke(app, [*args, "--out", str(out)])
+    assert result.exit_code == 0, result.output
+    with sqlite3.connect(out / "search.sqlite") as db:
+        rows = [json.loads(r[0]) for r in db.execute("SELECT outcome FROM trials ORDER BY idx")]
+    ran = [r for r in rows if r["ok"]]
+    assert ran, rows
+    for row in ran:  # the score is the expression of the trial's own facts
+        ttc = 0.0 if row["collision"] else min(10.0, row["min_ttc"] if row["min_ttc"] else 10.0)
+        distance = 0.0 if row["collision"] else row["min_distance"]
+        assert row["value"] == pytest.approx(ttc + 0.5 * distance, abs=1e-3)
+    assert json.loads((out / "search.json").read_text())["searches"][0]["objective"] == "custom"
 
 
 def _trials(database: Path) -> list[tuple[int, str]]:

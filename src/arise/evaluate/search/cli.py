@@ -14,6 +14,7 @@ from rich.table import Table
 
 from arise.evaluate.search.errors import SearchError
 from arise.evaluate.search.executor import Executor
+from arise.evaluate.search.expression import FACTS, parse_expression
 from arise.evaluate.search.objective import Objective
 from arise.evaluate.search.outputs import describe, write_outputs
 from arise.evaluate.search.runner import (
@@ -47,6 +48,8 @@ Examples:
 
   arise search my.scenic --objective collision --workers 2 --out out/my-search
 
+  arise search my.scenic --objective custom --expression 'min_ttc + 0.2 * min_distance'
+
   arise search my.scenic --executor ray --workers 8
 """
 
@@ -66,8 +69,21 @@ def search_command(
         Path, typer.Argument(help="A Scenic script, or a run folder of `arise generate`.")
     ],
     objective: Annotated[
-        str, typer.Option(help="What to minimise: min-ttc, min-distance or collision.")
+        str,
+        typer.Option(
+            help="What to minimise: min-ttc, min-distance, collision, or custom (with "
+            "--expression)."
+        ),
     ] = "min-ttc",
+    expression: Annotated[
+        str | None,
+        typer.Option(
+            help="The custom objective, smaller = more critical: arithmetic over "
+            + ", ".join(FACTS)
+            + " (min, max, abs, comparisons and 'a if c else b' too). "
+            "Example: --objective custom --expression 'min_ttc + 0.2 * min_distance'"
+        ),
+    ] = None,
     sampler: Annotated[
         str,
         typer.Option(
@@ -104,6 +120,9 @@ def search_command(
 ) -> None:
     script = resolve_script(target)
     chosen_objective = _choice(Objective, objective, "objective")
+    if expression is not None and chosen_objective is not Objective.CUSTOM:
+        raise SearchError("--expression goes with --objective custom")
+    goal = parse_expression(expression or "") if chosen_objective is Objective.CUSTOM else None
     samplers = [_choice(SamplerKind, s, "sampler") for s in sampler.split(",") if s.strip()]
     chosen_executor = _choice(Executor, executor, "executor")
     if not samplers:
@@ -120,6 +139,7 @@ def search_command(
             config = SearchConfig(
                 script=script,
                 objective=chosen_objective,
+                expression=goal,
                 sampler=kind,
                 trials=trials,
                 workers=workers,

@@ -12,6 +12,8 @@ from enum import StrEnum
 from typing import Any
 
 from arise.evaluate.criticality import criticality
+from arise.evaluate.search.errors import SearchError
+from arise.evaluate.search.expression import Expression
 from arise.validate.types import CheckResult
 
 #: A time-to-collision above this is no conflict at all; also the score of a trial in
@@ -26,10 +28,11 @@ class Objective(StrEnum):
     MIN_DISTANCE = "min-distance"  # closest approach of the footprints (m)
     # Collision-seeking: the closest approach (m) too, but only a contact counts as found.
     COLLISION = "collision"
+    CUSTOM = "custom"  # the user's expression over the same facts (`expression.py`)
 
     @property
     def unit(self) -> str:
-        return "s" if self is Objective.MIN_TTC else "m"
+        return {Objective.MIN_TTC: "s", Objective.CUSTOM: ""}.get(self, "m")
 
     @property
     def label(self) -> str:
@@ -37,6 +40,7 @@ class Objective(StrEnum):
             Objective.MIN_TTC: "min TTC (s)",
             Objective.MIN_DISTANCE: "min distance (m)",
             Objective.COLLISION: "min distance (m), 0 = collision",
+            Objective.CUSTOM: "custom objective",
         }[self]
 
 
@@ -67,9 +71,26 @@ class TrialOutcome:
 
 
 def score(
-    objective: Objective, collision: bool, min_ttc: float | None, min_distance: float | None
+    objective: Objective,
+    collision: bool,
+    min_ttc: float | None,
+    min_distance: float | None,
+    *,
+    route_completion: float | None = None,
+    expression: Expression | None = None,
 ) -> float:
     """The number the search minimises."""
+    if objective is Objective.CUSTOM:
+        if expression is None:
+            raise SearchError("--objective custom needs --expression")
+        return expression.value(
+            {
+                "min_ttc": min(TTC_CAP, min_ttc if min_ttc is not None else TTC_CAP),
+                "min_distance": max(0.0, min_distance or 0.0),
+                "collision": 1.0 if collision else 0.0,
+                "route_completion": route_completion if route_completion is not None else 0.0,
+            }
+        )
     if collision:
         return 0.0
     if objective is Objective.MIN_TTC:
@@ -77,7 +98,12 @@ def score(
     return round(max(0.0, min_distance if min_distance is not None else 0.0), 3)
 
 
-def outcome(result: CheckResult, objective: Objective, seconds: float) -> TrialOutcome:
+def outcome(
+    result: CheckResult,
+    objective: Objective,
+    seconds: float,
+    expression: Expression | None = None,
+) -> TrialOutcome:
     """The verdict on one check of a trial's script."""
     if not result.ok or result.simulation is None:
         message = result.diagnostic.one_line() if result.diagnostic else "the script did not run"
@@ -92,7 +118,14 @@ def outcome(result: CheckResult, objective: Objective, seconds: float) -> TrialO
         )
     return TrialOutcome(
         ok=True,
-        value=score(objective, facts.collision, facts.min_ttc, facts.min_distance),
+        value=score(
+            objective,
+            facts.collision,
+            facts.min_ttc,
+            facts.min_distance,
+            route_completion=facts.route_completion,
+            expression=expression,
+        ),
         collision=facts.collision,
         min_ttc=facts.min_ttc,
         min_distance=facts.min_distance,

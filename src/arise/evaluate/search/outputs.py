@@ -173,7 +173,7 @@ def write_critical(
     )
     checked = check(script, options, pool=pool)
     notes: list[str] = []
-    again = outcome(checked, result.config.objective, 0.0)
+    again = outcome(checked, result.config.objective, 0.0, result.config.expression)
     if again.value != best.outcome.value:
         notes.append(
             f"the critical script scored {_fmt(again.value)} when run again "

@@ -18,6 +18,7 @@ from pathlib import Path
 
 from arise.evaluate.search.errors import NoFreeParameters, SearchError, StoreMismatch
 from arise.evaluate.search.executor import Executor, TrialJob, TrialRunner, make_runner
+from arise.evaluate.search.expression import Expression
 from arise.evaluate.search.objective import (
     CRITICAL_TTC,
     TTC_CAP,
@@ -55,6 +56,8 @@ class SearchConfig:
         default_factory=lambda: CheckOptions(spawn_attempts=SEARCH_SPAWN_ATTEMPTS)
     )
     ray_address: str | None = None
+    #: the user's objective when ``objective`` is CUSTOM (checked by `parse_expression`)
+    expression: Expression | None = None
 
 
 @dataclass
@@ -128,6 +131,8 @@ def search_key(text: str, config: SearchConfig) -> str:
         "simulator": config.check.simulator.value,
         "map_dir": config.check.map_dir,
     }
+    if config.expression is not None:  # only then: the keys of earlier searches stay
+        identity["expression"] = config.expression.text
     return hashlib.sha256(json.dumps(identity, sort_keys=True).encode()).hexdigest()[:16]
 
 
@@ -153,7 +158,7 @@ def _failed_score(objective: Objective, trials: list[TrialRecord]) -> float:
     seen = [t.outcome.value for t in trials if t.outcome.ok and t.outcome.value is not None]
     if seen:
         return max(seen)
-    return TTC_CAP if objective is Objective.MIN_TTC else FAILED_DISTANCE
+    return FAILED_DISTANCE if objective is not Objective.MIN_TTC else TTC_CAP
 
 
 def prepare(config: SearchConfig, store: SearchStore) -> tuple[SearchResult, int]:
@@ -244,7 +249,7 @@ def run_search(
                         config.executor, config.workers, options, config.ray_address
                     )
                 for job, check_result, seconds in active.run(jobs):
-                    verdict = outcome(check_result, config.objective, seconds)
+                    verdict = outcome(check_result, config.objective, seconds, config.expression)
                     record = TrialRecord(job.index, proposals[job.index - index].values, verdict)
                     store.save(result.key, record)
                     outcomes[job.index] = verdict
