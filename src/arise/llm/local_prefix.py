@@ -98,6 +98,7 @@ class PrefixKeeper:
             self._remember(found)
             self._context_key = key
             return PrefixOutcome(PrefixUse.LOADED, n, time.perf_counter() - started)
+        self._context_key = None  # until the prefix is whole again
         llama.reset()
         llama.eval(tokens)
         entry = StoredPrefix(key=key, tokens=tuple(tokens), state=self._state_bytes())
