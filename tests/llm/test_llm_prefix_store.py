@@ -93,3 +93,35 @@ def test_warm_builds_and_rebuilds_a_damaged_entry(model_path: Path) -> None:
     assert "checksum mismatch" in second.output
     cleared = runner.invoke(app, ["llm", "warm", "--clear"])
     assert "removed 3 stored prefix(es)" in cleared.output
+
+
+def test_generate_builds_the_store_once_and_writes_the_same_script(
+    model_path: Path, tmp_path: Path
+) -> None:
+    description = (
+        "The ego drives along a straight road when a pedestrian steps off the right "
+        "sidewalk and stops in its lane."
+    )
+    env = {**os.environ, "ARISE_CACHE_DIR": str(tmp_path / "cache"), "ARISE_LLM_CACHE": "off"}
+    outputs = []
+    for name in ("first", "second"):
+        done = subprocess.run(
+            [sys.executable, "-m", "arise", "generate", description, "-o", str(tmp_path / name)],
+            env=env,
+            capture_output=True,
+            text=True,
+            timeout=900,
+        )
+        assert done.returncode == 0, done.stdout + done.stderr
+        outputs.append(done.stdout)
+    assert outputs[0].count("prefix store: first run") == 1
+    assert "prefix store" not in outputs[1]
+    first, second = (
+        json.loads((tmp_path / name / "report.json").read_text()) for name in ("first", "second")
+    )
+    script = (tmp_path / "first" / "scenario.scenic").read_text()
+    assert script == (tmp_path / "second" / "scenario.scenic").read_text()
+    assert first["llm"]["prefixes_built"] >= 2 and second["llm"]["prefixes_loaded"] >= 2
+    assert second["llm"]["prompt_tokens"] == first["llm"]["prompt_tokens"]
+    assert second["llm"]["prompt_tokens_evaluated"] < first["llm"]["prompt_tokens_evaluated"] / 2
+    assert [c["label"] for c in second["llm_calls"]][:2] == ["extract", "adapt"]
