@@ -77,6 +77,29 @@ def _model() -> list[Finding]:
         findings.append(
             Finding("model", Verdict.FAIL, f"embedded model missing; {model_files.how_to_get()}")
         )
+    profile = settings.profiles.get("local")
+    if profile is not None and profile.prefix_store:
+        from arise.llm.prefix_store import PrefixStore
+
+        store = PrefixStore(limit_mb=profile.prefix_store_mb)
+        entries = store.entries()
+        findings.append(
+            Finding(
+                "model",
+                Verdict.OK,
+                f"prefix store: {len(entries)} entries, {store.size_bytes() / 2**20:.0f} of "
+                f"{profile.prefix_store_mb} MiB at {store.root}"
+                + ("" if entries else " (the first run, or `arise llm warm`, builds it)"),
+            )
+        )
+    elif profile is not None:
+        findings.append(
+            Finding(
+                "model",
+                Verdict.WARN,
+                "prefix store off: every run re-reads the fixed prompt prefixes",
+            )
+        )
     try:
         import llama_cpp  # noqa: F401
     except ImportError:

@@ -81,6 +81,8 @@ def test_warm_builds_and_rebuilds_a_damaged_entry(model_path: Path) -> None:
     store = PrefixStore()
     entries = store.entries()
     assert len(entries) == 3
+    doctor = runner.invoke(app, ["doctor"])
+    assert "prefix store: 3 entries" in doctor.output, doctor.output
     victim = entries[0]
     blob = bytearray(victim.read_bytes())
     blob[len(blob) // 2] ^= 0x55
