@@ -31,7 +31,7 @@ from pathlib import Path
 from typing import Any
 
 from arise.evaluate.metrics import esr_single, esr_total, rcr
-from arise.evaluate.prompt_file import read_prompts
+from arise.evaluate.prompt_file import BenchPrompt, read_prompts
 from arise.evaluate.records import RunRecord
 from arise.evaluate.runner import BenchConfig, run_bench
 from arise.evaluate.store import BenchStore
@@ -112,13 +112,17 @@ def _median_of(rows: list[dict[str, Any]], pick: Any) -> float:
     return statistics.median(values) if values else float("nan")
 
 
-def prefix_store_runs(args: argparse.Namespace, out: Path) -> None:
+def select_prompts(args: argparse.Namespace) -> list[BenchPrompt]:
+    """The dev set, its first --limit prompts, or --sample prompts spread evenly over it."""
     prompts = read_prompts(PROMPTS)
     if args.sample:
         step = len(prompts) / args.sample
-        prompts = [prompts[int(i * step)] for i in range(args.sample)]
-    elif args.limit:
-        prompts = prompts[: args.limit]
+        return [prompts[int(i * step)] for i in range(args.sample)]
+    return prompts[: args.limit] if args.limit else prompts
+
+
+def prefix_store_runs(args: argparse.Namespace, out: Path) -> None:
+    prompts = select_prompts(args)
     stores = ["off", "on"] if args.prefix_store == "both" else [args.prefix_store]
     rows_path = out / "prefix-runs.jsonl"
     out.mkdir(parents=True, exist_ok=True)
@@ -227,9 +231,8 @@ def main() -> None:
         return
     with BenchStore(out / "bench.sqlite") as store:
         if not args.summarize:
-            prompts = read_prompts(PROMPTS)
             config = BenchConfig(
-                prompts=prompts[: args.limit] if args.limit else prompts,
+                prompts=select_prompts(args),
                 base=GenerateOptions(
                     provider=args.provider, cache=False, record=args.record, replay=args.replay
                 ),
