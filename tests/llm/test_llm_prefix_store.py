@@ -62,7 +62,7 @@ def test_the_store_never_changes_an_answer(model_path: Path, tmp_path: Path) -> 
     loaded = _run(env)
     for calls in (off, built, loaded):
         assert [c["text"] for c in calls] == [c["text"] for c in off]
-    assert off[0]["text"] != off[1]["text"] or off[0]["text"], "two real answers"
+    assert all(str(c["text"]).startswith("{") for c in off), "real answers, JSON specs"
     assert [c["prefix"] for c in off] == ["evaluated", "in_context"]
     assert [c["prefix"] for c in built] == ["built", "in_context"]
     assert [c["prefix"] for c in loaded] == ["loaded", "in_context"]
