@@ -22,8 +22,8 @@ from arise.evaluate.fidelity import (
     score_fidelity,
 )
 from arise.validate.facts import ego_pair_facts, find_collisions
-from arise.validate.types import AgentTrace, CheckResult, SimulationFacts, TracePoint
-from arise.vocabulary import ACTOR_CLASSES, PAPER_CATEGORIES, PROP_CLASSES
+from arise.validate.types import AgentTrace, CheckResult, LaneChange, SimulationFacts, TracePoint
+from arise.vocabulary import ACTOR_CLASSES, PAPER_CATEGORIES, PROP_CLASSES, Side
 
 # Scenic's frame: heading 0 faces +y, angles grow counter-clockwise, so the ego at the
 # origin facing +y has its left at -x and its right at +x.
@@ -377,6 +377,16 @@ def test_ego_maneuver_from_the_trace(
 ) -> None:
     ego = agent("ego", "Car", points, ego=True, lane_changes=lane_changes)
     assert score_fidelity(truth(), ran(ego)).verdict("ego_maneuver").observed == maneuver
+
+
+def test_the_lane_change_side_is_the_road_networks_not_a_curves_drift() -> None:
+    # drifting 6 m to the right (a right-hand curve) while the road network saw one change
+    # into the lane on the left
+    ego = agent("ego", "Car", straight(0, 0, 6.0, 40, NORTH), ego=True, lane_changes=1)
+    ego.lane_change_log = [LaneChange(step=20, side=Side.LEFT)]
+    assert score_fidelity(truth(), ran(ego)).verdict("ego_maneuver").observed == (
+        "lane_change_left"
+    )
 
 
 def test_a_run_that_did_not_execute_has_no_score() -> None:

@@ -39,6 +39,11 @@ def maps() -> dict[str, frozenset[str]]:
             "lane.",
             "change_and_return",
         ),
+        (
+            "The ego pulls into the oncoming lane to pass a slow bicycle while an oncoming car "
+            "approaches.",
+            "bypass",
+        ),
         ("The ego stops at the stop line, then goes when a cyclist has crossed.", "stop_then_go"),
         ("The ego waits for the oncoming motorcycle to pass, then turns left.", "yield_then_go"),
     ],
@@ -55,6 +60,7 @@ def test_the_ego_plan_is_read_from_the_egos_own_words(text: str, plan: str) -> N
         "An oncoming truck keeps going straight and does not yield.",
         "A car overtakes the ego and then returns to its lane.",
         "The ego stops at a red light when a car rear-ends it.",
+        "The ego drifts into the oncoming lane on a curve and meets a truck head-on.",
     ],
 )
 def test_no_plan_from_what_others_do(text: str) -> None:

@@ -50,6 +50,7 @@ from arise.vocabulary import (
     WEATHER_PRESETS,
     ActorRole,
     EgoManeuver,
+    Side,
 )
 
 #: Closer than this (metres between footprints), or touching, is "came close".
@@ -564,7 +565,8 @@ def start_matches(start: Start, where: Placement) -> bool:
 
 def observed_maneuver(ego: AgentTrace) -> Maneuver | None:
     """The ego's maneuver: stopped, a turn (heading change), a lane change (the road network's
-    count, else sideways drift) to the side it went furthest, or straight."""
+    count) to the side of its first change (without a road network: the side it drifted
+    furthest), or straight."""
     if not ego.trajectory:
         return None
     if travel_heading(ego) is None:
@@ -573,6 +575,9 @@ def observed_maneuver(ego: AgentTrace) -> Maneuver | None:
     if coarse is None:
         return None
     if coarse is EgoManeuver.CHANGE_LANE:
+        if ego.lane_change_log:  # the road network's side; a curve's drift says nothing
+            left = ego.lane_change_log[0].side is Side.LEFT
+            return Maneuver.LANE_CHANGE_LEFT if left else Maneuver.LANE_CHANGE_RIGHT
         origin = ego.trajectory[0]
         widest = max((_lateral(origin, p) for p in ego.trajectory), key=abs)
         return Maneuver.LANE_CHANGE_LEFT if widest > 0 else Maneuver.LANE_CHANGE_RIGHT

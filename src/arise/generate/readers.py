@@ -571,7 +571,10 @@ _EGO_PLANS: tuple[tuple[EgoPlan, re.Pattern[str]], ...] = (
         re.compile(
             r"\bbypass\w*|\b(?:go\w*|driv\w*|steer\w*|pass\w*|get\w*) (?:\w+ ){0,3}?(?:a)?round\b"
             r"[^.;]{0,60}?\b(?:opposite|oncoming) lane|\b(?:us\w*|through) the (?:opposite|"
-            r"oncoming) lane",
+            r"oncoming) lane"
+            # "pulls into the oncoming lane to pass": a purpose, so a drift is not a bypass
+            r"|\b\w+ (?:out )?into the (?:opposite|oncoming) lane\b[^.;]{0,15}?\bto "
+            r"(?:pass|overtake|get (?:a)?round|go (?:a)?round)\b",
             re.I,
         ),
     ),
