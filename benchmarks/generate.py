@@ -221,7 +221,7 @@ def main() -> None:
         "--sample", type=int, default=None, help="N prompts spread evenly over the set"
     )
     args = parser.parse_args()
-    out = Path(args.out)
+    out = Path(args.out).resolve()
     if args.prefix_store:
         if args.summarize:
             rows_path = out / "prefix-runs.jsonl"

@@ -10,7 +10,13 @@ import platformdirs
 
 def cache_dir() -> Path:
     """User cache folder (override with ARISE_CACHE_DIR); created on first use."""
-    folder = Path(os.environ.get("ARISE_CACHE_DIR") or platformdirs.user_cache_dir("arise"))
+    override = os.environ.get("ARISE_CACHE_DIR")
+    # absolute: the validator's workers and map preparation run from other folders
+    folder = (
+        Path(override).expanduser().resolve()
+        if override
+        else Path(platformdirs.user_cache_dir("arise"))
+    )
     folder.mkdir(parents=True, exist_ok=True)
     return folder
 

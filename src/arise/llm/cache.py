@@ -8,17 +8,15 @@ stop, seed) and, for sampled calls (temperature > 0) without a seed, the run ind
 from __future__ import annotations
 
 import json
-import os
 import sqlite3
 import threading
 import time
 from dataclasses import replace
 from pathlib import Path
 
-import platformdirs
-
 from arise.llm.base import BaseProvider, Wrapper
 from arise.llm.types import Completion, Request, Usage
+from arise.paths import cache_dir
 
 _SCHEMA = """
 CREATE TABLE IF NOT EXISTS responses (
@@ -33,9 +31,7 @@ CREATE TABLE IF NOT EXISTS responses (
 
 
 def default_cache_path() -> Path:
-    override = os.environ.get("ARISE_CACHE_DIR")
-    base = Path(override).expanduser() if override else Path(platformdirs.user_cache_dir("arise"))
-    return base / "llm-cache.sqlite3"
+    return cache_dir() / "llm-cache.sqlite3"
 
 
 def cache_key(provider: str, model: str, request: Request, run_index: int = 0) -> str:

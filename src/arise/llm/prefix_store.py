@@ -25,7 +25,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
-import platformdirs
+from arise.paths import cache_dir
 
 _MAGIC = b"ARISEKV1"
 _SUFFIX = ".kvstate"
@@ -34,9 +34,7 @@ DEFAULT_LIMIT_MB = 512
 
 def default_store_dir() -> Path:
     """``$ARISE_CACHE_DIR/prefix-store`` or the user cache folder's."""
-    override = os.environ.get("ARISE_CACHE_DIR")
-    base = Path(override).expanduser() if override else Path(platformdirs.user_cache_dir("arise"))
-    return base / "prefix-store"
+    return cache_dir() / "prefix-store"
 
 
 def entry_key(model_sha256: str, settings: dict[str, object], tokens: Sequence[int]) -> str:
