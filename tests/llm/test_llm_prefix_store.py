@@ -25,9 +25,9 @@ DESCRIPTION = "The ego car goes straight while a cyclist on the right front swer
 _CALLS = """
 import json, sys
 from arise.generate.extract import extraction_messages
-from arise.llm.local import LocalProvider
+from arise.llm.registry import get_provider
 from arise.llm.types import Request
-provider = LocalProvider(threads=2)
+provider = get_provider("local", cache=False)  # settings and ARISE_* as a user gets them
 out = []
 for temperature, seed in ((0.0, None), (0.8, 7)):
     request = Request.build(
