@@ -96,14 +96,14 @@ def test_a_custom_objective_scores_every_trial_from_its_trace(tmp_path: Path) ->
     args += ["--sampler", "halton", "--objective", "custom", "--expression", expression]
     result = runner.invoke(app, [*args, "--out", str(out)])
     assert result.exit_code == 0, result.output
+    query = "SELECT ok, value, collision, min_ttc, min_distance FROM trials ORDER BY idx"
     with sqlite3.connect(out / "search.sqlite") as db:
-        rows = [json.loads(r[0]) for r in db.execute("SELECT outcome FROM trials ORDER BY idx")]
-    ran = [r for r in rows if r["ok"]]
+        rows = list(db.execute(query))
+    ran = [r for r in rows if r[0]]
     assert ran, rows
-    for row in ran:  # the score is the expression of the trial's own facts
-        ttc = 0.0 if row["collision"] else min(10.0, row["min_ttc"] if row["min_ttc"] else 10.0)
-        distance = 0.0 if row["collision"] else row["min_distance"]
-        assert row["value"] == pytest.approx(ttc + 0.5 * distance, abs=1e-3)
+    for _, value, _collision, min_ttc, min_distance in ran:  # the trial's own facts
+        ttc = min(10.0, min_ttc if min_ttc is not None else 10.0)
+        assert value == pytest.approx(ttc + 0.5 * max(0.0, min_distance or 0.0), abs=1e-3)
     assert json.loads((out / "search.json").read_text())["searches"][0]["objective"] == "custom"
 
 
