@@ -9,6 +9,8 @@ lane-change label, or weaves.
 
 Run:  .venv/bin/python benchmarks/ego_lane_changes.py out/fidelity-short-after6 \
           out/fidelity-nhtsa-after6 out/fidelity-crash_reports-after6
+The dev prompt set has no labels of its own; its ego lane changes are labeled by hand in
+benchmarks/data/dev_prompts_ego_lane_changes.json ('either' runs are not counted).
 """
 
 from __future__ import annotations
@@ -20,6 +22,7 @@ from typing import Any
 
 REPO = Path(__file__).resolve().parents[1]
 DEVSETS = REPO / "src" / "arise" / "evaluate" / "devsets"
+DEV_PROMPT_LABELS = REPO / "benchmarks" / "data" / "dev_prompts_ego_lane_changes.json"
 
 
 def labels() -> dict[str, str | None]:
@@ -30,6 +33,9 @@ def labels() -> dict[str, str | None]:
             if line.strip():
                 row = json.loads(line)
                 found[row["id"]] = (row.get("truth") or {}).get("ego_maneuver")
+    for ident, label in json.loads(DEV_PROMPT_LABELS.read_text(encoding="utf-8")).items():
+        if not ident.startswith("_"):
+            found[ident] = label
     return found
 
 
@@ -59,7 +65,8 @@ def main() -> None:
             ego = ego_of(json.loads(trace_path.read_text(encoding="utf-8")))
             if ego is None:
                 continue
-            rows.append((ident, truth.get(ident), ego))
+            if truth.get(ident) != "either":
+                rows.append((ident, truth.get(ident), ego))
         wanted = [r for r in rows if (r[1] or "").startswith("lane_change")]
         others = [r for r in rows if not (r[1] or "").startswith("lane_change")]
         changed = [r for r in wanted if r[2].get("lane_changes", 0) >= 1]
