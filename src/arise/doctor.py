@@ -82,16 +82,8 @@ def _model() -> list[Finding]:
         from arise.llm.prefix_store import PrefixStore
 
         store = PrefixStore(limit_mb=profile.prefix_store_mb)
-        entries = store.entries()
-        findings.append(
-            Finding(
-                "model",
-                Verdict.OK,
-                f"prefix store: {len(entries)} entries, {store.size_bytes() / 2**20:.0f} of "
-                f"{profile.prefix_store_mb} MiB at {store.root}"
-                + ("" if entries else " (the first run, or `arise llm warm`, builds it)"),
-            )
-        )
+        empty = "" if store.entries() else " (the first run, or `arise llm warm`, builds it)"
+        findings.append(Finding("model", Verdict.OK, f"prefix store: {store.describe()}{empty}"))
     elif profile is not None:
         findings.append(
             Finding(

@@ -63,8 +63,4 @@ def warm_command(
         )
     for note in store.discarded:
         console.print(f"[yellow]rebuilt[/yellow] {escape(note)}")
-    console.print(
-        f"store: {escape(str(store.root))}, {store.size_bytes() / 2**20:.0f} MiB "
-        f"in {len(store.entries())} entries (bound {store.limit_bytes >> 20} MiB)",
-        highlight=False,
-    )
+    console.print(f"store: {escape(store.describe())}", highlight=False)

@@ -23,7 +23,7 @@ from pathlib import Path
 from typing import Any
 
 from arise.llm.base import BaseProvider
-from arise.llm.local_prefix import PrefixKeeper, PrefixOutcome, prefix_tokens
+from arise.llm.local_prefix import PrefixKeeper, PrefixOutcome
 from arise.llm.model_files import DEFAULT_MODEL, default_model_path, how_to_get
 from arise.llm.prefix_store import DEFAULT_LIMIT_MB, PrefixStore
 from arise.llm.structured import response_format
@@ -211,10 +211,10 @@ class LocalProvider(BaseProvider):
             return self.threads or 1
         return auto_threads(self._watch.others())
 
-    def _prefix(self, llama: Any, llama_cpp: Any, request: Request) -> PrefixOutcome:
+    def _prefix(self, request: Request) -> PrefixOutcome:
         """Bring the context to the state after the request's fixed prefix (lock held)."""
         keeper: PrefixKeeper = _LOADED["keeper"]
-        tokens = prefix_tokens(llama, llama_cpp, request.messages)
+        tokens = keeper.prefix_tokens(request.messages)
         if tokens is None:
             keeper.forget_context()
             return PrefixOutcome(PrefixUse.NONE, 0, 0.0)
@@ -222,14 +222,13 @@ class LocalProvider(BaseProvider):
 
     def warm(self, prefixes: dict[str, list[Message]]) -> dict[str, PrefixOutcome]:
         """Make sure each named prefix is in the store (``arise llm warm``)."""
-        llama_cpp = _import_llama_cpp()
         outcomes: dict[str, PrefixOutcome] = {}
         with _LOCK:
-            llama, _ = _load(self.path, self.n_ctx, self._threads_now(), self.prefix_cache_mb)
+            _load(self.path, self.n_ctx, self._threads_now(), self.prefix_cache_mb)
             for name, messages in prefixes.items():
                 # the prefix is every message but the last: add a placeholder last one
                 request = Request.build([*messages, Message("user", "-")])
-                outcomes[name] = self._prefix(llama, llama_cpp, request)
+                outcomes[name] = self._prefix(request)
         return outcomes
 
     def send(self, request: Request) -> Completion:
@@ -240,7 +239,7 @@ class LocalProvider(BaseProvider):
             _set_threads(llama, threads)
             llama_cpp.llama_perf_context_reset(llama.ctx)
             started = time.perf_counter()
-            prefix = self._prefix(llama, llama_cpp, request)
+            prefix = self._prefix(request)
             probe = _FirstToken()
             kwargs: dict[str, Any] = {
                 "messages": [m.as_dict() for m in request.messages],

@@ -27,40 +27,29 @@ from arise.llm.types import Message, PrefixUse
 _RAM_ENTRIES = 6  # states kept in memory per process (~30 MB each for the 1.5B model)
 
 
-def prefix_tokens(llama: Any, llama_cpp: Any, messages: Sequence[Message]) -> list[int] | None:
-    """The tokens of all messages but the last, as the chat template renders them; None
-    when the template is not one we can render apart or the split is not a clean prefix."""
-    if len(messages) < 2 or llama.chat_handler is not None:
-        return None
-    if llama.chat_format != "chat_template.default":
-        return None
-    template = llama.metadata.get("tokenizer.chat_template")
-    if not template:
-        return None
-    eos = llama.token_eos()
-    bos = llama.token_bos()
-    formatter = llama_cpp.llama_chat_format.Jinja2ChatFormatter
-    eos_text = llama._model.token_get_text(eos) if eos != -1 else ""
-    bos_text = llama._model.token_get_text(bos) if bos != -1 else ""
-    head = formatter(template, eos_text, bos_text, add_generation_prompt=False)
-    whole = formatter(template, eos_text, bos_text, add_generation_prompt=True)
-    dicts = [m.as_dict() for m in messages]
-    head_text = head(messages=dicts[:-1]).prompt
-    whole_text = whole(messages=dicts).prompt
-    if not whole_text.startswith(head_text):
-        return None
-    head_ids = list(llama.tokenize(head_text.encode("utf-8"), add_bos=False, special=True))
-    whole_ids = llama.tokenize(whole_text.encode("utf-8"), add_bos=False, special=True)
-    if len(head_ids) >= len(whole_ids) or list(whole_ids[: len(head_ids)]) != head_ids:
-        return None
-    return head_ids
-
-
 @dataclass(frozen=True)
 class PrefixOutcome:
     use: PrefixUse
     tokens: int
     seconds: float
+
+
+def _template_formatters(llama: Any, llama_cpp: Any) -> tuple[Any, Any] | None:
+    """The model's own chat template, twice; None when llama-cpp-python formats the chat
+    some other way (a handler or a named format), which we cannot render apart."""
+    if llama.chat_handler is not None or llama.chat_format != "chat_template.default":
+        return None
+    template = llama.metadata.get("tokenizer.chat_template")
+    if not template:
+        return None
+    eos, bos = llama.token_eos(), llama.token_bos()
+    eos_text = llama._model.token_get_text(eos) if eos != -1 else ""
+    bos_text = llama._model.token_get_text(bos) if bos != -1 else ""
+    formatter = llama_cpp.llama_chat_format.Jinja2ChatFormatter
+    return (
+        formatter(template, eos_text, bos_text, add_generation_prompt=False),
+        formatter(template, eos_text, bos_text, add_generation_prompt=True),
+    )
 
 
 class PrefixKeeper:
@@ -74,6 +63,27 @@ class PrefixKeeper:
         self._model_sha: str | None = None
         self._ram: OrderedDict[str, StoredPrefix] = OrderedDict()
         self._context_key: str | None = None  # the prefix the context was last built from
+        # The chat template rendered without and with the generation prompt (compiled once).
+        self._formatters = _template_formatters(llama, llama_cpp)
+
+    def prefix_tokens(self, messages: Sequence[Message]) -> list[int] | None:
+        """The tokens of all messages but the last, as the chat template renders them; None
+        when the template is not one we can render apart or the split is not a clean
+        prefix."""
+        llama = self.llama
+        if len(messages) < 2 or self._formatters is None:
+            return None
+        head, whole = self._formatters
+        dicts = [m.as_dict() for m in messages]
+        head_text = head(messages=dicts[:-1]).prompt
+        whole_text = whole(messages=dicts).prompt
+        if not whole_text.startswith(head_text):
+            return None
+        head_ids = list(llama.tokenize(head_text.encode("utf-8"), add_bos=False, special=True))
+        whole_ids = llama.tokenize(whole_text.encode("utf-8"), add_bos=False, special=True)
+        if len(head_ids) >= len(whole_ids) or list(whole_ids[: len(head_ids)]) != head_ids:
+            return None
+        return head_ids
 
     def key(self, tokens: Sequence[int], store: PrefixStore | None) -> str:
         """The store's key; without a store, one for this process's memory only (the

@@ -118,6 +118,13 @@ class PrefixStore:
     def size_bytes(self) -> int:
         return sum(p.stat().st_size for p in self.entries())
 
+    def describe(self) -> str:
+        """One line for people: how many entries, how big, the bound, where."""
+        return (
+            f"{len(self.entries())} entries, {self.size_bytes() / 2**20:.0f} of "
+            f"{self.limit_bytes >> 20} MiB at {self.root}"
+        )
+
     def clear(self) -> int:
         """Delete every entry; returns how many."""
         found = self.entries()

@@ -158,7 +158,7 @@ def _failed_score(objective: Objective, trials: list[TrialRecord]) -> float:
     seen = [t.outcome.value for t in trials if t.outcome.ok and t.outcome.value is not None]
     if seen:
         return max(seen)
-    return FAILED_DISTANCE if objective is not Objective.MIN_TTC else TTC_CAP
+    return TTC_CAP if objective is Objective.MIN_TTC else FAILED_DISTANCE
 
 
 def prepare(config: SearchConfig, store: SearchStore) -> tuple[SearchResult, int]:
