@@ -22,6 +22,7 @@ import time
 from pathlib import Path
 from typing import Any
 
+from arise.llm import lazy_grammar
 from arise.llm.base import BaseProvider
 from arise.llm.local_prefix import PrefixKeeper, PrefixOutcome
 from arise.llm.model_files import DEFAULT_MODEL, default_model_path, how_to_get
@@ -97,6 +98,12 @@ def _load(path: Path, n_ctx: int, threads: int, cache_mb: int) -> tuple[Any, flo
         "llama_cpp": getattr(llama_cpp, "__version__", "?"),
     }
     keeper = PrefixKeeper(llama, llama_cpp, str(path), state_settings)
+    lazy_grammar.install(
+        llama,
+        llama_cpp,
+        enabled=lambda: bool(_LOADED.get("lazy_grammar", True)),
+        on_build=lambda sampler: _LOADED.__setitem__("lazy_sampler", sampler),
+    )
     _LOADED.update(key=key, llama=llama, seconds=seconds, threads=threads, keeper=keeper)
     return llama, seconds
 
@@ -178,6 +185,7 @@ class LocalProvider(BaseProvider):
         prefix_store: bool = True,
         prefix_store_mb: int = DEFAULT_LIMIT_MB,
         store_dir: Path | None = None,
+        lazy_grammar: bool = True,
         capabilities: Capabilities | None = None,
     ) -> None:
         self.name = name
@@ -196,6 +204,7 @@ class LocalProvider(BaseProvider):
         self.n_ctx = int(n_ctx)
         self.prefix_cache_mb = int(prefix_cache_mb)
         self.store = PrefixStore(store_dir, prefix_store_mb) if prefix_store else None
+        self.lazy_grammar = bool(lazy_grammar)
         self.capabilities = capabilities or Capabilities(
             structured="json_object_schema", max_context=self.n_ctx, seed=True, local=True
         )
@@ -237,6 +246,8 @@ class LocalProvider(BaseProvider):
         with _LOCK:
             llama, load_seconds = _load(self.path, self.n_ctx, threads, self.prefix_cache_mb)
             _set_threads(llama, threads)
+            _LOADED["lazy_grammar"] = self.lazy_grammar
+            _LOADED.pop("lazy_sampler", None)
             llama_cpp.llama_perf_context_reset(llama.ctx)
             started = time.perf_counter()
             prefix = self._prefix(request)
@@ -267,6 +278,7 @@ class LocalProvider(BaseProvider):
                 raise
             latency = time.perf_counter() - started
             perf = llama_cpp.llama_perf_context(llama.ctx)
+            lazy = _LOADED.pop("lazy_sampler", None)
         choice = reply["choices"][0]
         usage = reply.get("usage") or {}
         details: dict[str, Any] = {
@@ -279,6 +291,8 @@ class LocalProvider(BaseProvider):
             "generated_tokens_evaluated": int(perf.n_eval),
             "generation_seconds": perf.t_eval_ms / 1000.0,
         }
+        if lazy is not None:
+            details["grammar_full_passes"] = lazy.full_passes
         if load_seconds:
             details["load_seconds"] = load_seconds
         return Completion(

@@ -34,6 +34,7 @@ def build_backend(profile: ProviderSettings, run_index: int = 0) -> BaseProvider
             prefix_cache_mb=profile.prefix_cache_mb,
             prefix_store=profile.prefix_store,
             prefix_store_mb=profile.prefix_store_mb,
+            lazy_grammar=profile.lazy_grammar,
             capabilities=caps,
         )
     if profile.kind == "openai":

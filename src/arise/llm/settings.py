@@ -43,6 +43,7 @@ class ProviderSettings:
     prefix_cache_mb: int = 0  # >0: llama-cpp-python's own whole-prompt RAM cache
     prefix_store: bool = True  # keep fixed prompt prefixes' states on disk for new processes
     prefix_store_mb: int = 512  # size bound of that store (least recently used dropped)
+    lazy_grammar: bool = True  # greedy JSON: ask the grammar about the best token first
     # replay only
     cassette: str | None = None
 
@@ -281,6 +282,7 @@ def apply_env(settings: Settings, env: dict[str, str]) -> Settings:
         "ARISE_REPLAY": "cassette",
         "ARISE_PREFIX_STORE": "prefix_store",
         "ARISE_PREFIX_STORE_MB": "prefix_store_mb",
+        "ARISE_LAZY_GRAMMAR": "lazy_grammar",
     }
     values = {attr: env[var] for var, attr in per_provider.items() if env.get(var)}
     profiles = dict(settings.profiles)
