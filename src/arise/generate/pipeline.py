@@ -115,10 +115,12 @@ class Generator:
         checker: Checker | None = None,
     ):
         self.options = options
-        self._load_kb(options)
-        self._load_maps(options)
         self._own_pool = pool is None
         self.pool = pool or WorkerPool(size=1)
+        if checker is None and self._own_pool:
+            self.pool.warm_in_background()  # overlaps the KB's and the model's loading
+        self._load_kb(options)
+        self._load_maps(options)
         self._own_provider = provider is None
         self._provider = provider
         self._checker = checker

@@ -350,9 +350,13 @@ class WorkerPool:
         self._started = 0
         self._closed = False
         self._lock = threading.Lock()
+        self._warming: threading.Thread | None = None
 
     def _take(self, connect_ports: tuple[int, ...]) -> Worker:
         """An idle worker confined for these ports, or a new one."""
+        warming = self._warming
+        if warming is not None and warming is not threading.current_thread():
+            warming.join()  # its worker, or (if its start failed) the right to start one
         try:
             worker = self._idle.get_nowait()
         except queue.Empty:
@@ -398,6 +402,20 @@ class WorkerPool:
         for worker in workers:
             self._idle.put(worker)
 
+    def warm_in_background(self) -> None:
+        """Start the workers on a thread: their start-up (~5 s, mostly importing Scenic in
+        the child) then overlaps the caller's own start-up, such as loading the model."""
+        if self._warming is not None:
+            return
+
+        def start() -> None:
+            # A start that fails here fails again in the first check, which reports it.
+            with contextlib.suppress(Exception):
+                self.warm()
+
+        self._warming = threading.Thread(target=start, name="arise-pool-warm", daemon=True)
+        self._warming.start()
+
     def sandbox(self) -> SandboxReport:
         """The confinement this pool's workers reach (starts one if none is warm)."""
         worker = self._take(())
@@ -438,6 +456,8 @@ class WorkerPool:
 
     def close(self) -> None:
         self._closed = True
+        if self._warming is not None:
+            self._warming.join()  # a worker still starting must not outlive the pool
         while True:
             try:
                 self._idle.get_nowait().kill()
