@@ -11,6 +11,7 @@ for curves, it left its lane on Town06's 50 m highway curves at 24-35 m/s.
 
 from __future__ import annotations
 
+import math
 import re
 from pathlib import Path
 
@@ -137,3 +138,17 @@ def test_highway_entries_keep_their_lane_on_carla_towns(
         if found:
             wrong[f"{entry.id} at {speed:g} m/s"] = found
     assert not wrong, wrong
+
+
+def test_the_curve_speed_is_that_of_the_lateral_acceleration_on_the_radius() -> None:
+    """A 50 m radius (Town06's highway curves) allows sqrt(3.5 * 50), about 13 m/s."""
+    from shapely.geometry import LineString
+
+    from arise.validate.worldmodel.curves import LATERAL_ACCELERATION, curve_speeds
+
+    arc = LineString([(50 * math.cos(a / 100), 50 * math.sin(a / 100)) for a in range(0, 158)])
+    _, speeds = curve_speeds(arc)
+    middle = speeds[len(speeds) // 4 : 3 * len(speeds) // 4]
+    assert middle == pytest.approx(math.sqrt(LATERAL_ACCELERATION * 50), rel=0.01)
+    _, straight = curve_speeds(LineString([(0, 0), (0, 100)]))
+    assert all(math.isinf(s) for s in straight)
