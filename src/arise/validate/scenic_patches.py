@@ -49,6 +49,18 @@ traces. docs/architecture.md says what moving to Scenic 3.2 would take.
    is what it needs.
    Breaks if: `VerifaiDiscreteRange.__init__` stops taking `(low, high, weights)` or the
    module stops importing numpy as `numpy`: those scripts fail to compile again.
+
+6. `RegulatedControlAction` (scenic.domains.driving.actions): replaced by the world
+   model's `BrakingRegulatedControlAction`, a subclass that brakes on a negative signal
+   when the simulation is the offline one, and is Scenic's own action anywhere else.
+   Why: Scenic 3.1 zeroes the throttle before it computes the brake from it, so the
+   driving behaviors could never brake, and with no drag offline a car could not slow
+   for a curve or a turn. The driving behaviors are Scenic modules, executed afresh at
+   each compile; they take the action by name from this Python module, so they find the
+   subclass.
+   Breaks if: the action's `(throttle, steer, past_steer, max_throttle, max_brake,
+   max_steer)` parameters change, or the behaviors stop naming it: the offline cars coast
+   again instead of braking (the check below catches the first).
 """
 
 from __future__ import annotations
@@ -63,6 +75,16 @@ STUCK_BEHAVIOR_SECONDS = 3  # a behavior step this long without an action is a b
 # Parsed maps kept per worker, budgeted by OpenDRIVE file size: a CARLA town (1-3.5 MB of
 # XML) costs ~30-100 MB parsed; our own maps (< 40 kB) almost nothing.
 NETWORK_CACHE_BYTES = 4_000_000
+
+REGULATED_CONTROL_PARAMETERS = (
+    "self",
+    "throttle",
+    "steer",
+    "past_steer",
+    "max_throttle",
+    "max_brake",
+    "max_steer",
+)
 
 _NETWORK_CACHE: dict[tuple[Any, ...], Any] = {}
 
@@ -112,11 +134,16 @@ def check_shapes() -> list[str]:
     shim = getattr(external, "numpy", None)
     if shim is not _numpy_module() and not isinstance(shim, _RaggedNumpy):
         problems.append("scenic.core.external_params no longer imports numpy as `numpy`")
+    import scenic.domains.driving.actions as driving_actions
+
+    names = list(inspect.signature(driving_actions.RegulatedControlAction.__init__).parameters)
+    if names != list(REGULATED_CONTROL_PARAMETERS):
+        problems.append(f"RegulatedControlAction takes {names}, not {REGULATED_CONTROL_PARAMETERS}")
     return problems
 
 
 def install() -> None:
-    """Install the five patches (once per worker process)."""
+    """Install the six patches (once per worker process)."""
     problems = check_shapes()
     if problems:
         raise ScenicChanged("; ".join(problems))
@@ -125,6 +152,7 @@ def install() -> None:
     _memoise_library_parsing()
     _stop_stuck_behaviors()
     _verifai_weights_under_cross_entropy()
+    _brake_in_regulated_control()
 
 
 def _memoise_networks() -> None:
@@ -246,3 +274,11 @@ def _verifai_weights_under_cross_entropy() -> None:
         self.__dict__["low"], self.__dict__["high"] = low, high
 
     external.VerifaiDiscreteRange.__init__ = keep_bounds
+
+
+def _brake_in_regulated_control() -> None:
+    import scenic.domains.driving.actions as driving_actions
+
+    from arise.validate.worldmodel.actions import BrakingRegulatedControlAction
+
+    driving_actions.RegulatedControlAction = BrakingRegulatedControlAction

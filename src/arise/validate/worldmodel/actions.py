@@ -13,7 +13,9 @@ from typing import Any
 from scenic.core.simulators import Action
 from scenic.core.vectors import Vector
 from scenic.domains.driving.actions import *  # noqa: F403  (scripts expect the driving actions too)
-from scenic.domains.driving.actions import SetPositionAction
+from scenic.domains.driving.actions import RegulatedControlAction, SetPositionAction
+
+from arise.validate.worldmodel.simulator import OfflineCarlaSimulation
 
 TRAFFIC_LIGHT_COLORS = ("red", "yellow", "green", "off", "unknown")
 
@@ -32,6 +34,36 @@ def record_event(sim: Any, obj: Any, kind: str, **details: Any) -> None:
                 **details,
             }
         )
+
+
+class BrakingRegulatedControlAction(RegulatedControlAction):
+    """Scenic's regulated control, except that a negative signal brakes offline.
+
+    Scenic 3.1's `RegulatedControlAction` sets the throttle to 0 before it computes
+    `brake = min(abs(throttle), max_brake)`, so FollowLane, FollowTrajectory, TurnBehavior
+    and LaneChangeBehavior can only coast; the offline physics has no drag, so a car
+    never slowed for a turn. This does what CARLA's agents do (their PID controller gives
+    one signal: throttle when positive, brake `min(-signal, max_brake)` when negative).
+    `scenic_patches` puts it in Scenic's driving actions, where those behaviors find it;
+    on any other simulator (CARLA itself) it acts exactly as Scenic's own action.
+    """
+
+    def __init__(
+        self,
+        throttle: float,
+        steer: float,
+        past_steer: float,
+        max_throttle: float = 0.5,
+        max_brake: float = 0.5,
+        max_steer: float = 0.8,
+    ):
+        super().__init__(throttle, steer, past_steer, max_throttle, max_brake, max_steer)
+        self.arise_brake = min(max(-float(throttle), 0.0), max_brake)
+
+    def applyTo(self, obj: Any, sim: Any) -> None:
+        super().applyTo(obj, sim)
+        if isinstance(sim, OfflineCarlaSimulation):
+            obj.setBraking(self.arise_brake)
 
 
 class _CarlaVehicle:

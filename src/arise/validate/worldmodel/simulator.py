@@ -20,6 +20,7 @@ from scenic.domains.driving.controllers import (
 from scenic.domains.driving.simulators import DrivingSimulation, DrivingSimulator
 
 from arise.validate.worldmodel.blueprints import check_blueprint
+from arise.validate.worldmodel.curves import CurveSpeedGovernor, GovernedLongitudinalController
 from arise.validate.worldmodel.weather import check_weather
 
 MAX_ACCELERATION = 5.6  # m/s^2
@@ -305,10 +306,13 @@ class OfflineCarlaSimulation(DrivingSimulation):
         self, agent: Any, lateral: tuple[float, float, float], scheduled: float | None = None
     ) -> tuple[Any, Any]:
         dt = self.timestep
+        # Every controlled vehicle slows for the curves on its lane ahead (`curves`).
+        governor = CurveSpeedGovernor(self.network, agent)
+        lon: PIDLongitudinalController
         if getattr(agent, "isCar", False):
-            lon = PIDLongitudinalController(K_P=0.5, K_D=0.1, K_I=0.7, dt=dt)
+            lon = GovernedLongitudinalController(governor, K_P=0.5, K_D=0.1, K_I=0.7, dt=dt)
         else:
-            lon = PIDLongitudinalController(K_P=0.25, K_D=0.025, K_I=0.0, dt=dt)
+            lon = GovernedLongitudinalController(governor, K_P=0.25, K_D=0.025, K_I=0.0, dt=dt)
         kp, kd, ki = lateral
         if scheduled is not None:
             return lon, SpeedScheduledLateralController(
