@@ -118,7 +118,9 @@ class Generator:
         self._own_pool = pool is None
         self.pool = pool or WorkerPool(size=1)
         if checker is None and self._own_pool:
-            self.pool.warm_in_background()  # overlaps the KB's and the model's loading
+            # overlaps the KB's and the model's loading; niced, so that on 2 cores it takes
+            # only what the model's two threads leave (its checks run while the model waits)
+            self.pool.warm_in_background(nice=10)
         self._load_kb(options)
         self._load_maps(options)
         self._own_provider = provider is None

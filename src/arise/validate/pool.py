@@ -113,7 +113,13 @@ def _folder_bytes(folder: Path) -> int:
 class Worker:
     """One confined child process running `arise.validate.worker`."""
 
-    def __init__(self, memory_mb: int, connect_ports: tuple[int, ...] = (), confine: bool = True):
+    def __init__(
+        self,
+        memory_mb: int,
+        connect_ports: tuple[int, ...] = (),
+        confine: bool = True,
+        nice: int = 0,
+    ):
         self.connect_ports = connect_ports
         self.scratch = Path(tempfile.mkdtemp(prefix=f"{SCRATCH_PREFIX}{os.getpid()}-"))
         self.process = subprocess.Popen(
@@ -125,6 +131,9 @@ class Worker:
             cwd=self.scratch,
             env=_worker_env(self.scratch, memory_mb, connect_ports, confine),
         )
+        if nice:
+            with contextlib.suppress(OSError):  # a lower priority is only a courtesy
+                os.setpriority(os.PRIO_PROCESS, self.process.pid, nice)
         self.task_limit = limit_tasks(self.process.pid) if confine else None
         self.checks_done = 0
         self._buffer = bytearray()
@@ -352,7 +361,7 @@ class WorkerPool:
         self._lock = threading.Lock()
         self._warming: threading.Thread | None = None
 
-    def _take(self, connect_ports: tuple[int, ...]) -> Worker:
+    def _take(self, connect_ports: tuple[int, ...], nice: int = 0) -> Worker:
         """An idle worker confined for these ports, or a new one."""
         warming = self._warming
         if warming is not None and warming is not threading.current_thread():
@@ -375,7 +384,7 @@ class WorkerPool:
             worker, may_start = None, True
         if worker is None and may_start:
             try:
-                return Worker(self.memory_mb, connect_ports, self.confine)
+                return Worker(self.memory_mb, connect_ports, self.confine, nice)
             except Exception:
                 with self._lock:
                     self._started -= 1
@@ -396,13 +405,14 @@ class WorkerPool:
         with self._lock:
             self._started -= 1
 
-    def warm(self) -> None:
-        """Start every worker now, so the first checks do not pay for start-up."""
-        workers = [self._take(()) for _ in range(self.size - self._idle.qsize())]
+    def warm(self, nice: int = 0) -> None:
+        """Start every worker now, so the first checks do not pay for start-up; `nice`
+        lowers their CPU priority (for good: an unprivileged process cannot raise it)."""
+        workers = [self._take((), nice) for _ in range(self.size - self._idle.qsize())]
         for worker in workers:
             self._idle.put(worker)
 
-    def warm_in_background(self) -> None:
+    def warm_in_background(self, nice: int = 0) -> None:
         """Start the workers on a thread: their start-up (~5 s, mostly importing Scenic in
         the child) then overlaps the caller's own start-up, such as loading the model."""
         if self._warming is not None:
@@ -411,10 +421,15 @@ class WorkerPool:
         def start() -> None:
             # A start that fails here fails again in the first check, which reports it.
             with contextlib.suppress(Exception):
-                self.warm()
+                self.warm(nice)
 
         self._warming = threading.Thread(target=start, name="arise-pool-warm", daemon=True)
         self._warming.start()
+
+    def wait_warm(self) -> None:
+        """Return once a background start (`warm_in_background`) has finished."""
+        if self._warming is not None:
+            self._warming.join()
 
     def sandbox(self) -> SandboxReport:
         """The confinement this pool's workers reach (starts one if none is warm)."""
@@ -456,8 +471,7 @@ class WorkerPool:
 
     def close(self) -> None:
         self._closed = True
-        if self._warming is not None:
-            self._warming.join()  # a worker still starting must not outlive the pool
+        self.wait_warm()  # a worker still starting must not outlive the pool
         while True:
             try:
                 self._idle.get_nowait().kill()
