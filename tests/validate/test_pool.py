@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import os
 
+import psutil
 import pytest
 
 from arise.validate import CheckOptions, WorkerPool, check, check_text
@@ -50,3 +51,32 @@ def test_check_text_uses_a_private_file_and_cleans_up(tmp_path) -> None:
     result = check_text(text, CheckOptions(seed=4))
     assert result.ok, result.diagnostic
     assert not os.path.exists(result.script)
+
+
+@pytest.mark.slow
+def test_a_worker_started_in_the_background_serves_the_first_check() -> None:
+    script = EXAMPLES / "pedestrian_crossing.scenic"
+    with WorkerPool(size=1) as pool:
+        pool.warm_in_background(nice=10)
+        result = check(script, CheckOptions(seed=2), pool=pool)  # waits for that worker
+        assert result.ok, result.diagnostic
+        assert result.sandbox is not None
+        (worker,) = list(pool._idle.queue)
+        assert os.getpriority(os.PRIO_PROCESS, worker.process.pid) >= 10
+        assert pool._started == 1, "the check took the warmed worker, not a second one"
+
+
+@pytest.mark.slow
+def test_closing_while_a_worker_starts_leaves_no_process() -> None:
+    def workers() -> list[psutil.Process]:
+        children = psutil.Process().children()
+        return [c for c in children if "arise.validate.worker" in " ".join(c.cmdline())]
+
+    before = workers()
+    pool = WorkerPool(size=1)
+    pool.warm_in_background()
+    pool.close()  # joins the start, then stops the worker it made
+    assert pool._warming is not None and not pool._warming.is_alive()
+    assert pool._idle.empty()
+    psutil.wait_procs([p for p in workers() if p not in before], timeout=10)
+    assert [p for p in workers() if p not in before and p.is_running()] == []
