@@ -19,7 +19,7 @@ def test_each_entry_is_described_once_above_its_parameters() -> None:
     for entry in entries:
         assert listing.count(entry.descriptions[0]) == 1
     for name, (default, entry_id) in declared.items():
-        line = f"- {name} = {default}"
+        line = f"- {name} (default {default})"
         assert listing.count(line) == 1
         # the parameter sits in its own entry's block
         header = next(e.descriptions[0] for e in entries if e.id == entry_id)

@@ -130,7 +130,7 @@ def parameter_listing(entries: list[Entry], declared: dict[str, tuple[str, str]]
     tuning call's new prompt tokens (about 215 to 105 on the dev set)."""
     by_entry: dict[str, list[str]] = {}
     for name, (default, entry_id) in declared.items():
-        by_entry.setdefault(entry_id, []).append(f"- {name} = {default}")
+        by_entry.setdefault(entry_id, []).append(f"- {name} (default {default})")
     described = {entry.id: entry.descriptions[0] for entry in entries}
     return "\n".join(
         f"{described[entry_id]}\n" + "\n".join(lines) for entry_id, lines in by_entry.items()
