@@ -70,3 +70,20 @@ def test_a_closed_pipe_is_not_a_crash(tmp_path: Path, monkeypatch: pytest.Monkey
     result = runner.invoke(demo, ["piped"])
     assert result.exit_code == 0
     assert "crashed" not in result.output and not (tmp_path / "crashes").exists()
+
+
+@pytest.mark.parametrize("text", ["", "   ", "what is the capital of France?"])
+def test_a_refused_description_exits_before_anything_loads(
+    text: str, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    # No model, no knowledge base, no validator worker: the refusal is all the user waits for.
+    import arise.generate.cli as generate_cli
+
+    def no_generator(*_: object, **__: object) -> None:
+        raise AssertionError("a refused description built a Generator")
+
+    monkeypatch.setattr(generate_cli, "Generator", no_generator)
+    result = runner.invoke(app, ["generate", text, "--out", str(tmp_path / "out")])
+    assert result.exit_code == 2
+    assert "description is empty" in result.output or "driving scenario" in result.output
+    assert not (tmp_path / "out").exists()

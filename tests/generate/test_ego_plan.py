@@ -119,3 +119,36 @@ def test_no_plan_no_geometry_that_stops_yields_or_pulls_over(
 ) -> None:
     geometry = kb.get(_geometry(_spec(**changes), kb, maps))
     assert not set(geometry.tags) & PLAN_TAGS, geometry.id
+
+
+@pytest.mark.parametrize(
+    ("text", "expected"),
+    [
+        (
+            "The ego overtakes a slow truck on a straight road; while the ego is beside it, the "
+            "truck swerves toward the ego.",
+            ("change_lane", "left", "ahead_same_lane"),
+        ),
+        # someone else overtakes: the ego keeps its lane, the overtaker starts behind or beside
+        (
+            "A motorcycle overtakes the ego on its left and then cuts back in close in front of it.",
+            (None, None, "adjacent_lane_left"),
+        ),
+        # the ego's own words for the change win over the verb "overtake"
+        (
+            "The ego moves into the right lane to overtake a slow van.",
+            ("change_lane", "right", None),
+        ),
+    ],
+)
+def test_an_ego_that_overtakes_pulls_out_to_the_left(
+    text: str, expected: tuple[str | None, str | None, str | None]
+) -> None:
+    facts = read_description(text).facts
+    got = tuple(
+        facts[name].value if name in facts else None
+        for name in ("ego_maneuver", "ego_lane_side", "spawn_position")
+    )
+    assert got[:2] == expected[:2]
+    if expected[2] is not None:
+        assert got[2] == expected[2]

@@ -75,8 +75,9 @@ def test_closing_while_a_worker_starts_leaves_no_process() -> None:
     before = workers()
     pool = WorkerPool(size=1)
     pool.warm_in_background()
-    pool.close()  # joins the start, then stops the worker it made
+    pool.close()  # ends the start it no longer needs instead of waiting for it
     assert pool._warming is not None and not pool._warming.is_alive()
     assert pool._idle.empty()
+    assert pool._started == 0, "the start was ended, not waited for and then killed"
     psutil.wait_procs([p for p in workers() if p not in before], timeout=10)
     assert [p for p in workers() if p not in before and p.is_running()] == []

@@ -13,6 +13,7 @@ from rich.markup import escape
 from rich.text import Text
 
 from arise.generate.events import AttemptChecked, ProgressEvent, StageStarted
+from arise.generate.extract import check_description
 from arise.generate.options import GenerateOptions, Mode
 from arise.generate.pipeline import Generator, slug
 from arise.generate.run import GateVerdict, Generation, RunStatus
@@ -121,6 +122,11 @@ def generate_command(
     if not descriptions:
         errors.print("[red]error:[/red] give a description or --file")
         raise typer.Exit(2)
+    single = len(descriptions) == 1 and count == 1
+    refusal = check_description(descriptions[0][1]) if single and not as_json else None
+    if refusal:  # said before the model, the KB or a validator worker is loaded
+        errors.print(f"[red]error:[/red] {refusal}")
+        raise typer.Exit(2)
     options = GenerateOptions(
         mode=mode,
         provider=provider,
@@ -138,7 +144,6 @@ def generate_command(
         semantic_gate=semantic_gate,
     )
     runs: list[Generation] = []
-    single = len(descriptions) == 1 and count == 1
     with Generator(options) as generator:  # bad KB or map folders raise AriseError
         for ident, text in descriptions:
             for index in range(count):

@@ -371,6 +371,40 @@ def _subject(cast: Cast, position: int) -> Mention | str | None:
     return cast.subject_before(position)
 
 
+# "The ego overtakes a slow truck": the ego pulls out to the left past a vehicle ahead in its
+# lane (right-hand traffic), unless other words name its lane change or a bypass.
+_EGO_OVERTAKES = re.compile(r"\bovertak(?:es|ing|e)\b(?! (?:it|the ego|the av)\b)", re.I)
+
+
+def read_ego_overtaking(reading: Reading) -> None:
+    """An ego that overtakes the adversary changes lanes to the left, from behind it in the
+    same lane; only where no other words give the ego's maneuver or the adversary's start."""
+    adversary = reading.adversary
+    if adversary is None or adversary.cls not in VEHICLE_CLASSES:
+        return
+    if "ego_maneuver" in reading.facts:
+        return
+    for match in _EGO_OVERTAKES.finditer(reading.cast.text):
+        if _subject(reading.cast, match.start()) != "ego":
+            continue
+        quote = match.group(0)
+        for name, value in (
+            ("ego_maneuver", EgoManeuver.CHANGE_LANE.value),
+            ("ego_lane_side", "left"),
+        ):
+            reading.facts[name] = GroundedFact(
+                name=name, value=value, source=FactSource.TEXT, quote=quote
+            )
+        if "spawn_position" not in reading.facts:
+            reading.facts["spawn_position"] = GroundedFact(
+                name="spawn_position",
+                value=RelativePosition.AHEAD_SAME_LANE.value,
+                source=FactSource.TEXT,
+                quote=quote,
+            )
+        return
+
+
 def read_maneuvers(reading: Reading) -> None:
     """The ego's maneuver and the adversary's turn, each from verbs about that actor."""
     cast = reading.cast
@@ -722,6 +756,7 @@ def read_description(description: str, adversary_quote: str | None = None) -> Re
         if stationary is not None:
             reading.facts["adversary_stationary"] = stationary
     read_maneuvers(reading)
+    read_ego_overtaking(reading)
     read_start_detail(reading)
     read_ego_stopped(reading)
     read_ego_plan(reading)

@@ -20,6 +20,10 @@ from pydantic import ValidationError
 from arise.errors import AriseError
 from arise.kb.schema import COMPONENT_ORDER, Component, Entry
 
+# libyaml's safe loader reads the same documents about ten times faster than the pure-Python
+# one (about 1.1 s to 0.1 s for the shipped KB): time every `arise generate` pays.
+YamlLoader = getattr(yaml, "CSafeLoader", yaml.SafeLoader)
+
 ENV_VAR = "ARISE_KB_DIR"
 SUFFIXES = (".yaml", ".yml")
 
@@ -108,7 +112,7 @@ def _component_files(folder: Path) -> tuple[list[tuple[Component, Path]], list[K
 def _raw_entries(path: Path, component: Component) -> list[Any]:
     """The list of raw entries in a file, or a KBError saying why there is none."""
     try:
-        data = yaml.safe_load(path.read_text(encoding="utf-8"))
+        data = yaml.load(path.read_text(encoding="utf-8"), Loader=YamlLoader)
     except yaml.YAMLError as error:
         mark = getattr(error, "problem_mark", None)
         line = f" at line {mark.line + 1}" if mark is not None else ""

@@ -110,6 +110,15 @@ def _folder_bytes(folder: Path) -> int:
     return total
 
 
+def _kill_group(process: subprocess.Popen[bytes]) -> None:
+    """SIGKILL a worker and anything it started (it leads its own session)."""
+    if process.poll() is None:
+        try:
+            os.killpg(process.pid, signal.SIGKILL)
+        except (ProcessLookupError, PermissionError):
+            process.kill()
+
+
 class Worker:
     """One confined child process running `arise.validate.worker`."""
 
@@ -119,6 +128,7 @@ class Worker:
         connect_ports: tuple[int, ...] = (),
         confine: bool = True,
         nice: int = 0,
+        on_spawn: Callable[[subprocess.Popen[bytes]], None] | None = None,
     ):
         self.connect_ports = connect_ports
         self.scratch = Path(tempfile.mkdtemp(prefix=f"{SCRATCH_PREFIX}{os.getpid()}-"))
@@ -134,6 +144,8 @@ class Worker:
         if nice:
             with contextlib.suppress(OSError):  # a lower priority is only a courtesy
                 os.setpriority(os.PRIO_PROCESS, self.process.pid, nice)
+        if on_spawn is not None:
+            on_spawn(self.process)  # lets the pool kill a start it no longer needs
         self.task_limit = limit_tasks(self.process.pid) if confine else None
         self.checks_done = 0
         self._buffer = bytearray()
@@ -317,11 +329,7 @@ class Worker:
         )
 
     def kill(self) -> None:
-        if self.process.poll() is None:
-            try:
-                os.killpg(self.process.pid, signal.SIGKILL)
-            except (ProcessLookupError, PermissionError):
-                self.process.kill()
+        _kill_group(self.process)
         self.process.wait()
         for stream in (self.process.stdin, self.process.stdout):
             if stream is not None:
@@ -360,6 +368,15 @@ class WorkerPool:
         self._closed = False
         self._lock = threading.Lock()
         self._warming: threading.Thread | None = None
+        self._starting: set[subprocess.Popen[bytes]] = set()
+
+    def _spawned(self, process: subprocess.Popen[bytes]) -> None:
+        """Track a worker process until it is ready; one spawned after close dies at once."""
+        with self._lock:
+            if not self._closed:
+                self._starting.add(process)
+                return
+        _kill_group(process)
 
     def _take(self, connect_ports: tuple[int, ...], nice: int = 0) -> Worker:
         """An idle worker confined for these ports, or a new one."""
@@ -383,12 +400,21 @@ class WorkerPool:
             worker.kill()  # its confinement allows other ports; replace it
             worker, may_start = None, True
         if worker is None and may_start:
+            spawned: list[subprocess.Popen[bytes]] = []
+
+            def on_spawn(process: subprocess.Popen[bytes]) -> None:
+                spawned.append(process)
+                self._spawned(process)
+
             try:
-                return Worker(self.memory_mb, connect_ports, self.confine, nice)
+                return Worker(self.memory_mb, connect_ports, self.confine, nice, on_spawn)
             except Exception:
                 with self._lock:
                     self._started -= 1
                 raise
+            finally:
+                with self._lock:
+                    self._starting.difference_update(spawned)
         assert worker is not None
         return worker
 
@@ -408,9 +434,10 @@ class WorkerPool:
     def warm(self, nice: int = 0) -> None:
         """Start every worker now, so the first checks do not pay for start-up; `nice`
         lowers their CPU priority (for good: an unprivileged process cannot raise it)."""
-        workers = [self._take((), nice) for _ in range(self.size - self._idle.qsize())]
-        for worker in workers:
-            self._idle.put(worker)
+        for _ in range(self.size - self._idle.qsize()):
+            if self._closed:
+                return
+            self._idle.put(self._take((), nice))
 
     def warm_in_background(self, nice: int = 0) -> None:
         """Start the workers on a thread: their start-up (~5 s, mostly importing Scenic in
@@ -470,7 +497,11 @@ class WorkerPool:
         return result
 
     def close(self) -> None:
-        self._closed = True
+        with self._lock:
+            self._closed = True
+            starting = list(self._starting)
+        for process in starting:  # a start nobody will use: end it rather than wait ~5 s
+            _kill_group(process)
         self.wait_warm()  # a worker still starting must not outlive the pool
         while True:
             try:
