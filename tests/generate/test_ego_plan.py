@@ -134,6 +134,12 @@ def test_no_plan_no_geometry_that_stops_yields_or_pulls_over(
             "A motorcycle overtakes the ego on its left and then cuts back in close in front of it.",
             (None, None, "adjacent_lane_left"),
         ),
+        # on the other side of the road: a bypass, not a lane change
+        (
+            "The ego overtakes a slow truck through the oncoming lane while an oncoming car "
+            "approaches.",
+            (None, None, None),
+        ),
         # the ego's own words for the change win over the verb "overtake"
         (
             "The ego moves into the right lane to overtake a slow van.",
@@ -152,3 +158,5 @@ def test_an_ego_that_overtakes_pulls_out_to_the_left(
     assert got[:2] == expected[:2]
     if expected[2] is not None:
         assert got[2] == expected[2]
+    bypass = "oncoming lane" in text
+    assert ("ego_plan" in facts and facts["ego_plan"].value == "ego_bypass") == bypass

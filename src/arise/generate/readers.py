@@ -372,8 +372,12 @@ def _subject(cast: Cast, position: int) -> Mention | str | None:
 
 
 # "The ego overtakes a slow truck": the ego pulls out to the left past a vehicle ahead in its
-# lane (right-hand traffic), unless other words name its lane change or a bypass.
+# lane (right-hand traffic), unless other words give its lane change; overtaking through the
+# oncoming lane is a bypass.
 _EGO_OVERTAKES = re.compile(r"\bovertak(?:es|ing|e)\b(?! (?:it|the ego|the av)\b)", re.I)
+_THROUGH_ONCOMING = re.compile(
+    r"\b(?:oncoming|opposite|opposing) lane\b|\bother side of the road\b|\bwrong side\b", re.I
+)
 
 
 def read_ego_overtaking(reading: Reading) -> None:
@@ -384,10 +388,24 @@ def read_ego_overtaking(reading: Reading) -> None:
         return
     if "ego_maneuver" in reading.facts:
         return
-    for match in _EGO_OVERTAKES.finditer(reading.cast.text):
+    text = reading.cast.text
+    for match in _EGO_OVERTAKES.finditer(text):
         if _subject(reading.cast, match.start()) != "ego":
             continue
         quote = match.group(0)
+        sentence = re.split(r"[.;!?]", text[match.start() :], maxsplit=1)[0]
+        through = _THROUGH_ONCOMING.search(sentence)
+        if through is not None:  # around it on the other side of the road: a bypass
+            reading.facts.setdefault(
+                "ego_plan",
+                GroundedFact(
+                    name="ego_plan",
+                    value=EgoPlan.BYPASS.value,
+                    source=FactSource.TEXT,
+                    quote=f"{quote} ... {through.group(0)}",
+                ),
+            )
+            return
         for name, value in (
             ("ego_maneuver", EgoManeuver.CHANGE_LANE.value),
             ("ego_lane_side", "left"),
