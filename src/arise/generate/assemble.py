@@ -126,8 +126,9 @@ def tune_params(
 def parameter_listing(entries: list[Entry], declared: dict[str, tuple[str, str]]) -> str:
     """The parameters under the entry that declares them, each entry described once.
 
-    Naming the entry's description once per entry, not once per parameter, halves the
-    tuning call's new prompt tokens (about 215 to 105 on the dev set)."""
+    Naming the entry's description once per entry, not once per parameter, shortened the
+    tuning prompt from 486 to 404 tokens (median over 15 dev-set runs). Each name keeps
+    "(default X)": written "NAME = default", the model replaced every range by a number."""
     by_entry: dict[str, list[str]] = {}
     for name, (default, entry_id) in declared.items():
         by_entry.setdefault(entry_id, []).append(f"- {name} (default {default})")
