@@ -137,7 +137,7 @@ class Cast:
     def subject_after(self, position: int) -> Mention | str | None:
         """The actor named first after `position` in its sentence (for a leading participle:
         "Turning left, the ego ...")."""
-        end = _sentence_end(self.text, position)
+        end = sentence_end(self.text, position)
         best: tuple[int, Mention | str] | None = None
         for span in self.ego:
             if position <= span.start < end and (best is None or span.start < best[0]):
@@ -164,7 +164,8 @@ def _sentence_start(text: str, position: int) -> int:
     return ends[-1] if ends else 0
 
 
-def _sentence_end(text: str, position: int) -> int:
+def sentence_end(text: str, position: int) -> int:
+    """Where the sentence holding `position` ends (a stop followed by a space, or the end)."""
     found = _SENTENCE.search(text, position)
     return found.start() if found else len(text)
 

@@ -11,7 +11,14 @@ import re
 from dataclasses import dataclass, field
 
 from arise.generate.facts import FactSource, GroundedFact
-from arise.generate.mentions import VEHICLE_CLASSES, Cast, Mention, phrase_start, read_cast
+from arise.generate.mentions import (
+    VEHICLE_CLASSES,
+    Cast,
+    Mention,
+    phrase_start,
+    read_cast,
+    sentence_end,
+)
 from arise.generate.quotes import find_quote
 from arise.generate.weather_words import read_weather
 from arise.vocabulary import (
@@ -143,9 +150,7 @@ def words_of(cast: Cast, mention: Mention) -> list[tuple[int, int]]:
     for span in mention.spans:
         lead = _passive_verb_start(text, phrase_start(text, span.start))
         end = next((s for s in starts if s > span.end), len(text))
-        found = re.search(r"[.;!?](?:\s|$)", text[span.end :])
-        sentence_end = span.end + found.start() if found else len(text)
-        stretches.append((lead, min(end, sentence_end)))
+        stretches.append((lead, min(end, sentence_end(text, span.end))))
     return stretches
 
 
@@ -393,8 +398,7 @@ def read_ego_overtaking(reading: Reading) -> None:
         if _subject(reading.cast, match.start()) != "ego":
             continue
         quote = match.group(0)
-        sentence = re.split(r"[.;!?]", text[match.start() :], maxsplit=1)[0]
-        through = _THROUGH_ONCOMING.search(sentence)
+        through = _THROUGH_ONCOMING.search(text, match.start(), sentence_end(text, match.start()))
         if through is not None:  # around it on the other side of the road: a bypass
             reading.facts.setdefault(
                 "ego_plan",
