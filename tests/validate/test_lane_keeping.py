@@ -113,13 +113,6 @@ def test_no_geometry_entry_changes_lanes_unintentionally(validator_pool: WorkerP
 
 @pytest.mark.slow
 @pytest.mark.carla_towns
-@pytest.mark.xfail(
-    strict=True,
-    reason="One case of the highway entries on Town06 is left: highway_ego_lane_change_left "
-    "at 15 m/s, seed 1, changes lanes at 8 m/s and then, following its lane on a curve at "
-    "exactly 15 m/s, keeps a 1.3 m lateral limit cycle (3 lane changes). Since the cars brake "
-    "and slow for curves, highway_cruise, middle and slow lane keep their lanes at 24-35 m/s",
-)
 def test_highway_entries_keep_their_lane_on_carla_towns(
     validator_pool: WorkerPool, carla_maps: Path
 ) -> None:

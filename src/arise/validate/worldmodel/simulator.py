@@ -21,6 +21,11 @@ from scenic.domains.driving.simulators import DrivingSimulation, DrivingSimulato
 
 from arise.validate.worldmodel.blueprints import check_blueprint
 from arise.validate.worldmodel.curves import CurveSpeedGovernor, GovernedLongitudinalController
+from arise.validate.worldmodel.feedforward import (
+    FollowedPath,
+    feed_forward_steer,
+    heading_damping,
+)
 from arise.validate.worldmodel.weather import check_weather
 
 MAX_ACCELERATION = 5.6  # m/s^2
@@ -57,13 +62,15 @@ class SpeedScheduledLateralController(PIDLateralController):
         K_I: float,
         dt: float,
         clock: Callable[[], int] | None = None,
-        reference_speed: float = LATERAL_REFERENCE_SPEED,
+        reference_speed: float | None = LATERAL_REFERENCE_SPEED,
+        path: FollowedPath | None = None,
     ):
         super().__init__(K_P=K_P, K_D=K_D, K_I=K_I, dt=dt)
         self.agent = agent
         self.reference_speed = reference_speed
         self.clock = clock
         self.last_step: int | None = None
+        self.path = path
 
     def run_step(self, cte: float) -> float:
         # A behavior that hands the car to another one (FollowTrajectoryBehavior gives it
@@ -77,9 +84,14 @@ class SpeedScheduledLateralController(PIDLateralController):
         self.last_step = now
         output = float(super().run_step(cte))
         speed = float(getattr(self.agent, "speed", 0.0) or 0.0)
-        if speed > self.reference_speed:
+        if self.reference_speed is not None and speed > self.reference_speed:
             output *= (self.reference_speed / speed) ** 2
-        return output
+        point = self.path.read(cte) if self.path is not None else None
+        if point is not None:
+            wheelbase = max(float(getattr(self.agent, "length", 0.0) or 0.0), MIN_WHEELBASE)
+            output += feed_forward_steer(point.curvature, wheelbase)
+            output += heading_damping(self.Kp, self.Kd, speed, wheelbase) * point.heading_error
+        return max(-1.0, min(1.0, output))
 
 
 class OfflineCarlaSimulator(DrivingSimulator):
@@ -314,17 +326,16 @@ class OfflineCarlaSimulation(DrivingSimulation):
         else:
             lon = GovernedLongitudinalController(governor, K_P=0.25, K_D=0.025, K_I=0.0, dt=dt)
         kp, kd, ki = lateral
-        if scheduled is not None:
-            return lon, SpeedScheduledLateralController(
-                agent,
-                K_P=kp,
-                K_D=kd,
-                K_I=ki,
-                dt=dt,
-                clock=lambda: int(self.currentTime),
-                reference_speed=scheduled,
-            )
-        return lon, PIDLateralController(K_P=kp, K_D=kd, K_I=ki, dt=dt)
+        return lon, SpeedScheduledLateralController(
+            agent,
+            K_P=kp,
+            K_D=kd,
+            K_I=ki,
+            dt=dt,
+            clock=lambda: int(self.currentTime),
+            reference_speed=scheduled,
+            path=FollowedPath(self.network, agent),
+        )
 
     def getLaneFollowingControllers(self, agent: Any) -> tuple[Any, Any]:
         # Turns are not scheduled: they run slowly, and their agility is what lets a fast
@@ -332,7 +343,9 @@ class OfflineCarlaSimulation(DrivingSimulation):
         return self._pid_pair(agent, (0.1, 0.1, 0.02), scheduled=LATERAL_REFERENCE_SPEED)
 
     def getTurningControllers(self, agent: Any) -> tuple[Any, Any]:
-        return self._pid_pair(agent, (0.2, 0.2, 0.2))
+        # No integral term: the curvature feed-forward holds the arc, and the integral
+        # wound up over a slow turn and carried the car across it (`feedforward`).
+        return self._pid_pair(agent, (0.2, 0.2, 0.0))
 
     def getLaneChangingControllers(self, agent: Any) -> tuple[Any, Any]:
         # Twice the lane-following gains: scheduled from a lower speed, or a lane change
