@@ -23,8 +23,8 @@ from arise.validate.worldmodel.feedforward import (
     FollowedPath,
     feed_forward_steer,
     heading_damping,
-    signed_curvatures,
 )
+from arise.validate.worldmodel.linecurvature import signed_curvatures
 
 MAPS = Path(__file__).resolve().parents[2] / "src" / "arise" / "maps" / "data"
 RADIUS = 20.0
@@ -43,11 +43,11 @@ def _arc(left: bool) -> LineString:
 
 
 def test_curvature_is_positive_where_the_line_bends_left() -> None:
-    _, left = signed_curvatures(_arc(left=True))
-    _, right = signed_curvatures(_arc(left=False))
+    _, left = signed_curvatures(_arc(left=True), 1.0, 3.0)
+    _, right = signed_curvatures(_arc(left=False), 1.0, 3.0)
     assert left[5:-5] == pytest.approx(1 / RADIUS, rel=0.02)
     assert right[5:-5] == pytest.approx(-1 / RADIUS, rel=0.02)
-    _, straight = signed_curvatures(LineString([(0, 0), (0, 50)]))
+    _, straight = signed_curvatures(LineString([(0, 0), (0, 50)]), 1.0, 3.0)
     assert straight == pytest.approx(0.0)
 
 

@@ -20,6 +20,8 @@ from scenic.core.vectors import Vector
 from scenic.domains.driving.controllers import PIDLongitudinalController
 from shapely.geometry import LineString, Point
 
+from arise.validate.worldmodel.linecurvature import signed_curvatures
+
 # Lateral acceleration a curve may ask for: 2-4 m/s^2 is comfortable in a passenger car;
 # 3.5 lets a 50 m curve be taken at 13 m/s, a 10 m junction turn at 6 m/s.
 LATERAL_ACCELERATION = 3.5  # m/s^2
@@ -67,17 +69,9 @@ def _angle_between(a: float, b: float) -> float:
 
 def curve_speeds(line: LineString) -> tuple[np.ndarray, np.ndarray]:
     """Samples along the line and sqrt(a_lat * R) at each (inf where it is straight)."""
-    distances = np.arange(0.0, line.length, SAMPLE_STEP)
-    points = np.array([line.interpolate(s).coords[0] for s in distances])
-    before = np.array([line.interpolate(max(0.0, s - CHORD)).coords[0] for s in distances])
-    after = np.array([line.interpolate(min(line.length, s + CHORD)).coords[0] for s in distances])
-    a = np.linalg.norm(points - before, axis=1)
-    b = np.linalg.norm(after - points, axis=1)
-    c = np.linalg.norm(after - before, axis=1)
-    u, v = points - before, after - before
-    twice_area = np.abs(u[:, 0] * v[:, 1] - u[:, 1] * v[:, 0])
+    distances, signed = signed_curvatures(line, SAMPLE_STEP, CHORD)
+    curvature = np.abs(signed)
     with np.errstate(divide="ignore", invalid="ignore"):
-        curvature = np.where(a * b * c > 1e-9, 2 * twice_area / (a * b * c), 0.0)
         speeds = np.where(
             curvature > 1e-6, np.sqrt(LATERAL_ACCELERATION / np.maximum(curvature, 1e-6)), np.inf
         )

@@ -27,6 +27,8 @@ import numpy as np
 from shapely.geometry import LineString, Point
 from shapely.strtree import STRtree
 
+from arise.validate.worldmodel.linecurvature import signed_curvatures
+
 SEARCH_RADIUS = 6.0  # metres from the car to the lane centrelines considered
 MATCH_TOLERANCE = 0.08  # metres between the behavior's error and a centreline's distance
 MAX_HEADING_ERROR = math.radians(60)
@@ -34,19 +36,22 @@ SAMPLE_STEP = 1.0  # metres between curvature samples along a centreline
 CHORD = 3.0  # metres either side of a sample for the circle through three points
 PREVIEW_TIME = 0.3  # s: the steering rate limit needs about that long to reach a new angle
 MIN_PREVIEW = 0.5  # metres
+KEPT_INDEXES = 4  # road networks whose lane index a worker keeps
 
 
-@dataclass(frozen=True)
 class Centreline:
-    """One lane's centreline, with its signed curvature (left positive) sampled along it."""
+    """One lane's centre line; its signed curvature (left positive) is sampled along it
+    when first asked for, since a car reads only the few lanes it drives on."""
 
-    line: LineString
-    distances: np.ndarray
-    curvatures: np.ndarray
+    def __init__(self, line: LineString):
+        self.line = line
+        self._curvatures: np.ndarray | None = None
 
     def curvature_at(self, along: float) -> float:
-        index = int(np.clip(round(along / SAMPLE_STEP), 0, len(self.curvatures) - 1))
-        return float(self.curvatures[index])
+        if self._curvatures is None:
+            self._curvatures = signed_curvatures(self.line, SAMPLE_STEP, CHORD)[1]
+        index = int(np.clip(round(along / SAMPLE_STEP), 0, len(self._curvatures) - 1))
+        return float(self._curvatures[index])
 
     def heading_at(self, along: float) -> float:
         """The direction of travel along the line at a distance, as a math angle."""
@@ -55,52 +60,37 @@ class Centreline:
         return math.atan2(end.y - start.y, end.x - start.x)
 
 
-def signed_curvatures(line: LineString) -> tuple[np.ndarray, np.ndarray]:
-    """Samples along the line and the signed curvature of the circle through three points
-    at each (positive where the line bends left)."""
-    distances = np.arange(0.0, max(line.length, SAMPLE_STEP), SAMPLE_STEP)
-    points = np.array([line.interpolate(s).coords[0] for s in distances])
-    before = np.array([line.interpolate(max(0.0, s - CHORD)).coords[0] for s in distances])
-    after = np.array([line.interpolate(min(line.length, s + CHORD)).coords[0] for s in distances])
-    a = np.linalg.norm(points - before, axis=1)
-    b = np.linalg.norm(after - points, axis=1)
-    c = np.linalg.norm(after - before, axis=1)
-    u, v = points - before, after - before
-    cross = u[:, 0] * v[:, 1] - u[:, 1] * v[:, 0]  # positive where the line bends left
-    with np.errstate(divide="ignore", invalid="ignore"):
-        curvature = np.where(a * b * c > 1e-9, 2 * cross / (a * b * c), 0.0)
-    return distances, curvature
-
-
 class LaneCentrelines:
-    """Every lane centreline of a road network, indexed for queries near a point."""
+    """Every lane centre line of a road network, indexed for queries near a point."""
 
     def __init__(self, network: Any):
         self.network = network
-        self.centrelines: list[Centreline] = []
-        for road in network.allRoads:
-            for lane in road.lanes:
-                line = LineString(lane.centerline.lineString.coords)
-                if line.length <= 0:
-                    continue
-                distances, curvatures = signed_curvatures(line)
-                self.centrelines.append(Centreline(line, distances, curvatures))
+        lines = (
+            LineString(lane.centerline.lineString.coords)
+            for road in network.allRoads
+            for lane in road.lanes
+        )
+        self.centrelines = [Centreline(line) for line in lines if line.length > 0]
         self.tree = STRtree([c.line for c in self.centrelines])
 
     @classmethod
     def of(cls, network: Any) -> LaneCentrelines:
-        """The index of a network, built once per network (a worker keeps one: the last)."""
-        global _LAST_INDEX
-        if _LAST_INDEX is None or _LAST_INDEX.network is not network:
-            _LAST_INDEX = cls(network)
-        return _LAST_INDEX
+        """The index of a network, built once per network; a worker keeps the last few,
+        as it keeps the parsed maps themselves."""
+        for index in _INDEXES:
+            if index.network is network:
+                return index
+        index = cls(network)
+        _INDEXES.insert(0, index)
+        del _INDEXES[KEPT_INDEXES:]
+        return index
 
     def near(self, point: Point) -> list[Centreline]:
         indices = self.tree.query(point.buffer(SEARCH_RADIUS))
         return [self.centrelines[int(i)] for i in indices]
 
 
-_LAST_INDEX: LaneCentrelines | None = None
+_INDEXES: list[LaneCentrelines] = []  # most recently built first
 
 
 @dataclass(frozen=True)
