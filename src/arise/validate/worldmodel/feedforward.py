@@ -86,7 +86,7 @@ class LaneCentrelines:
         return index
 
     def near(self, point: Point) -> list[Centreline]:
-        indices = self.tree.query(point.buffer(SEARCH_RADIUS))
+        indices = self.tree.query(point, predicate="dwithin", distance=SEARCH_RADIUS)
         return [self.centrelines[int(i)] for i in indices]
 
 
