@@ -37,6 +37,7 @@ CHORD = 3.0  # metres either side of a sample for the circle through three point
 PREVIEW_TIME = 0.3  # s: the steering rate limit needs about that long to reach a new angle
 MIN_PREVIEW = 0.5  # metres
 KEPT_INDEXES = 4  # road networks whose lane index a worker keeps
+DAMPING_RATIO = 0.8  # of the lateral loop, with the heading term at low speed
 
 
 class Centreline:
@@ -149,7 +150,7 @@ def _read(
     if along <= 0.0 or along >= line.length:
         return None  # beyond the centreline's ends: another lane carries on from here
     lane_heading = centreline.heading_at(along)
-    offset = (heading - lane_heading + math.pi) % (2 * math.pi) - math.pi
+    offset = _wrap(heading - lane_heading)
     if abs(offset) <= MAX_HEADING_ERROR:
         direction = 1.0
     elif abs(offset) >= math.pi - MAX_HEADING_ERROR:
@@ -162,8 +163,12 @@ def _read(
     distance = direction * left
     ahead = along + direction * preview
     curvature = direction * centreline.curvature_at(ahead)
-    heading_error = offset if direction > 0 else (offset + 2 * math.pi) % (2 * math.pi) - math.pi
+    heading_error = offset if direction > 0 else _wrap(offset - math.pi)
     return _Reading(centreline, abs(distance - cte), PathPoint(curvature, heading_error))
+
+
+def _wrap(angle: float) -> float:
+    return (angle + math.pi) % (2 * math.pi) - math.pi
 
 
 def feed_forward_steer(curvature: float, wheelbase: float) -> float:
@@ -171,9 +176,6 @@ def feed_forward_steer(curvature: float, wheelbase: float) -> float:
     where yaw rate = -v sin(steer pi/2) / wheelbase (negative steer turns left)."""
     ratio = max(-1.0, min(1.0, curvature * wheelbase))
     return -(2 / math.pi) * math.asin(ratio)
-
-
-DAMPING_RATIO = 0.8
 
 
 def heading_damping(k_p: float, k_d: float, speed: float, wheelbase: float) -> float:

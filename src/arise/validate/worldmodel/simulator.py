@@ -41,17 +41,19 @@ LANE_CHANGE_REFERENCE_SPEED = 12.0  # m/s
 
 
 class SpeedScheduledLateralController(PIDLateralController):
-    """Scenic's lateral PID with its output scaled by (v_ref / v)^2 above v_ref.
+    """Scenic's lateral PID, scheduled with speed, plus a steer for the lane's curve.
 
-    v_ref is 15 m/s for lane following and 12 m/s for lane changes, whose gains are twice
-    as high (a lane change at 15 m/s and above overshot into the lane beyond).
+    Above v_ref (15 m/s for lane following, 12 m/s for lane changes, whose gains are twice
+    as high; None for turns) the PID's output is scaled by (v_ref / v)^2. In this physics
+    (as on a real car) the yaw rate a steering input gives grows with speed, and the
+    cross-track error the PID sees grows with speed again: the loop gain grows with v^2.
+    Gains that hold the lane at 15 m/s made the car weave from lane to lane at 21 m/s and
+    above (the derivative term overshoots within one 0.1 s step). Scaling keeps the loop
+    as it is at v_ref, so the car keeps its lane at any speed up to the KB's 35 m/s;
+    CARLA's own agents schedule their gains similarly.
 
-    In this physics (as on a real car) the yaw rate a steering input gives grows with
-    speed, and the cross-track error the PID sees grows with speed again: the loop gain
-    grows with v^2. Gains that hold the lane at 15 m/s make the car weave from lane to
-    lane at 21 m/s and above (the derivative term overshoots within one 0.1 s step).
-    Scaling by (v_ref / v)^2 keeps the loop as it is at v_ref, so the car keeps its lane
-    at any speed up to the KB's 35 m/s; CARLA's own agents schedule their gains similarly.
+    With a `path`, the steer that holds the curvature of the followed lane and a heading
+    term at low speed are added after the scaling (`feedforward`).
     """
 
     def __init__(
