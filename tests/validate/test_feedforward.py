@@ -24,7 +24,7 @@ from arise.validate.worldmodel.feedforward import (
     feed_forward_steer,
     heading_damping,
 )
-from arise.validate.worldmodel.linecurvature import signed_curvatures
+from arise.validate.worldmodel.linegeometry import signed_curvatures
 
 MAPS = Path(__file__).resolve().parents[2] / "src" / "arise" / "maps" / "data"
 RADIUS = 20.0

@@ -20,7 +20,7 @@ from scenic.core.vectors import Vector
 from scenic.domains.driving.controllers import PIDLongitudinalController
 from shapely.geometry import LineString, Point
 
-from arise.validate.worldmodel.linecurvature import signed_curvatures
+from arise.validate.worldmodel.linegeometry import line_direction, signed_curvatures, wrap_angle
 
 # Lateral acceleration a curve may ask for: 2-4 m/s^2 is comfortable in a passenger car;
 # 3.5 lets a 50 m curve be taken at 13 m/s, a 10 m junction turn at 6 m/s.
@@ -54,17 +54,6 @@ class CurvePath:
         gaps = self.distances[ahead] - along
         allowed = np.sqrt(self.curve_speeds[ahead] ** 2 + 2 * CURVE_BRAKING * gaps)
         return float(allowed.min())
-
-
-def _heading_of(line: LineString, along: float) -> float:
-    """Scenic's heading (0 is +y, counter-clockwise) of the line at a distance along it."""
-    start = line.interpolate(max(0.0, along - 1.0))
-    end = line.interpolate(min(line.length, along + 1.0))
-    return math.atan2(end.y - start.y, end.x - start.x) - math.pi / 2
-
-
-def _angle_between(a: float, b: float) -> float:
-    return abs((a - b + math.pi) % (2 * math.pi) - math.pi)
 
 
 def curve_speeds(line: LineString) -> tuple[np.ndarray, np.ndarray]:
@@ -162,7 +151,8 @@ class CurveSpeedGovernor:
         for lane in candidates:
             line = lane.centerline.lineString
             along = line.project(point)
-            error = _angle_between(_heading_of(line, along), float(self.agent.heading))
+            heading = line_direction(line, along, 1.0) - math.pi / 2  # as Scenic's heading
+            error = abs(wrap_angle(heading - float(self.agent.heading)))
             if error > MAX_HEADING_ERROR:
                 continue
             score = line.distance(point) + 4.0 * error

@@ -27,7 +27,7 @@ import numpy as np
 from shapely.geometry import LineString, Point
 from shapely.strtree import STRtree
 
-from arise.validate.worldmodel.linecurvature import signed_curvatures
+from arise.validate.worldmodel.linegeometry import line_direction, signed_curvatures, wrap_angle
 
 SEARCH_RADIUS = 6.0  # metres from the car to the lane centrelines considered
 MATCH_TOLERANCE = 0.08  # metres between the behavior's error and a centreline's distance
@@ -53,12 +53,6 @@ class Centreline:
             self._curvatures = signed_curvatures(self.line, SAMPLE_STEP, CHORD)[1]
         index = int(np.clip(round(along / SAMPLE_STEP), 0, len(self._curvatures) - 1))
         return float(self._curvatures[index])
-
-    def heading_at(self, along: float) -> float:
-        """The direction of travel along the line at a distance, as a math angle."""
-        start = self.line.interpolate(max(0.0, along - 0.5))
-        end = self.line.interpolate(min(self.line.length, along + 0.5))
-        return math.atan2(end.y - start.y, end.x - start.x)
 
 
 class LaneCentrelines:
@@ -149,8 +143,8 @@ def _read(
     along = line.project(point)
     if along <= 0.0 or along >= line.length:
         return None  # beyond the centreline's ends: another lane carries on from here
-    lane_heading = centreline.heading_at(along)
-    offset = _wrap(heading - lane_heading)
+    lane_heading = line_direction(line, along, 0.5)
+    offset = wrap_angle(heading - lane_heading)
     if abs(offset) <= MAX_HEADING_ERROR:
         direction = 1.0
     elif abs(offset) >= math.pi - MAX_HEADING_ERROR:
@@ -163,12 +157,8 @@ def _read(
     distance = direction * left
     ahead = along + direction * preview
     curvature = direction * centreline.curvature_at(ahead)
-    heading_error = offset if direction > 0 else _wrap(offset - math.pi)
+    heading_error = offset if direction > 0 else wrap_angle(offset - math.pi)
     return _Reading(centreline, abs(distance - cte), PathPoint(curvature, heading_error))
-
-
-def _wrap(angle: float) -> float:
-    return (angle + math.pi) % (2 * math.pi) - math.pi
 
 
 def feed_forward_steer(curvature: float, wheelbase: float) -> float:

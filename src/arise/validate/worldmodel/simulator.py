@@ -26,6 +26,7 @@ from arise.validate.worldmodel.feedforward import (
     feed_forward_steer,
     heading_damping,
 )
+from arise.validate.worldmodel.linegeometry import wrap_angle
 from arise.validate.worldmodel.weather import check_weather
 
 MAX_ACCELERATION = 5.6  # m/s^2
@@ -109,10 +110,6 @@ class OfflineCarlaSimulator(DrivingSimulator):
         if kwargs.get("timestep") is None:
             kwargs["timestep"] = self.timestep
         return OfflineCarlaSimulation(scene, self.network, **kwargs)
-
-
-def _wrap_angle(angle: float) -> float:
-    return (angle + math.pi) % (2 * math.pi) - math.pi
 
 
 class OfflineCarlaSimulation(DrivingSimulation):
@@ -207,7 +204,7 @@ class OfflineCarlaSimulation(DrivingSimulation):
             return
         direction = aim - obj.position
         desired = math.atan2(direction.y, direction.x) - math.pi / 2
-        error = _wrap_angle(desired - obj.heading)
+        error = wrap_angle(desired - obj.heading)
         obj.setSteering(max(-1.0, min(1.0, -1.5 * error)))
         if self._blocked_ahead(obj):
             obj.setThrottle(0.0)

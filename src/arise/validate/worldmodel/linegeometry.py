@@ -1,15 +1,31 @@
-"""The curvature of a lane's centre line, from the circle through three points on it.
+"""How a lane's centre line runs: its direction and curvature along it, and angle arithmetic.
 
-Shared by the curve-speed governor (`curves`) and the steering feed-forward
-(`feedforward`): both read how a lane bends from its polyline, which has no curvature of
-its own. Points a chord apart either side smooth over the polyline's short segments.
+Shared by the simulator's autopilot, the curve-speed governor (`curves`) and the steering
+feed-forward (`feedforward`), which all compare headings and read how a lane bends from
+its polyline. A polyline has no curvature of its own: it is taken from the circle through
+three points a chord apart, which smooths over the polyline's short segments.
 """
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 import shapely
 from shapely.geometry import LineString
+
+
+def wrap_angle(angle: float) -> float:
+    """The same angle in [-pi, pi)."""
+    return (angle + math.pi) % (2 * math.pi) - math.pi
+
+
+def line_direction(line: LineString, along: float, half_span: float) -> float:
+    """The line's direction at a distance along it, as a math angle (0 is +x): the chord
+    from `half_span` metres before to `half_span` after (clamped at the ends)."""
+    start = line.interpolate(max(0.0, along - half_span))
+    end = line.interpolate(min(line.length, along + half_span))
+    return math.atan2(end.y - start.y, end.x - start.x)
 
 
 def signed_curvatures(line: LineString, step: float, chord: float) -> tuple[np.ndarray, np.ndarray]:
