@@ -10,6 +10,9 @@ import pytest
 
 from arise.validate import CheckOptions, WorkerPool
 
+# The fast tier's guard (tests/slow_guard.py) and pytester, which tests the guard.
+pytest_plugins = ["tests.slow_guard", "pytester"]
+
 REPO = Path(__file__).resolve().parents[1]
 DATA = REPO / "tests" / "data"
 EXAMPLES = REPO / "examples"

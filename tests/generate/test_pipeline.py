@@ -101,6 +101,7 @@ def test_single_pass_and_chatscene_modes_do_not_repair(tmp_path, validator_pool)
     assert _report(tmp_path / "chatscene")["mode"] == "chatscene"
 
 
+@pytest.mark.slow  # the generator warms its validator pool on start
 def test_bad_descriptions_are_refused_without_a_model(tmp_path) -> None:
     options = GenerateOptions(provider="replay", replay=str(tmp_path / "none.jsonl"))
     with Generator(options) as generator:

@@ -10,6 +10,8 @@ import tomllib
 from importlib.metadata import version
 from pathlib import Path
 
+import pytest
+
 from arise.validate import CheckOptions, WorkerPool, check, scenic_patches
 
 REPO = Path(__file__).resolve().parents[2]
@@ -27,6 +29,7 @@ def test_the_pin_says_why() -> None:
     assert version("scenic").startswith("3.1")
 
 
+@pytest.mark.slow
 def test_a_worker_trace_carries_heading_and_speed(validator_pool: WorkerPool) -> None:
     result = check(
         REPO / "examples" / "pedestrian_crossing.scenic",
