@@ -306,7 +306,7 @@ def test_an_object_of_a_class_the_text_never_names_is_extra() -> None:
     from arise.validate.types import AgentTrace, SimulationFacts, TracePoint
 
     def agent(name: str, kind: str, x: float, ego: bool = False) -> AgentTrace:
-        point = TracePoint(step=0, time=0.0, x=x, y=0.0, heading=0.0, speed=0.0)
+        point = TracePoint(step=0, x=x, y=0.0, heading=0.0, speed=0.0)
         return AgentTrace(
             name=name, kind=kind, width=2.0, length=4.5, is_ego=ego, trajectory=[point]
         )

@@ -260,6 +260,13 @@ def report_command(
             "conformity and criticality with the current checks (needs the runs' folders).",
         ),
     ] = False,
+    map_dir: Annotated[
+        str | None,
+        typer.Option(
+            help="Extra maps for --recheck (e.g. CARLA towns; the database's own map folder "
+            "is not used)."
+        ),
+    ] = None,
     search_trials: Annotated[
         int,
         typer.Option(
@@ -275,7 +282,7 @@ def report_command(
         raise typer.Exit(2)
     with BenchStore(database) as store:  # BenchStoreError: one line, exit 2
         if recheck_runs:
-            count = recheck(store)
+            count = recheck(store, map_dir=map_dir)
             console.print(
                 f"re-checked {count} executed run(s); sandbox: "
                 + confinement_summary([r.sandbox for r in store.runs() if r.ok])

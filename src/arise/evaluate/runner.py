@@ -396,15 +396,24 @@ def judge_missing(
     return len(todo)
 
 
-def recheck(store: BenchStore, on_record: OnRecord | None = None) -> int:
+#: Options of a bench database that name files this process would read: a database (and
+#: its run folders) may come from anyone, so a re-check takes these from the caller only.
+UNTRUSTED_FILE_OPTIONS = ("map_dir", "kb_dirs", "record", "replay")
+
+
+def recheck(
+    store: BenchStore, on_record: OnRecord | None = None, map_dir: str | None = None
+) -> int:
     """Validate each executed run's saved script again (same seed, so the same scene) and
     refresh its conformity and criticality: old runs get the current checks without
-    generating anything again."""
+    generating anything again. The maps are the caller's (`map_dir`), not the store's."""
     from arise.generate.spec import ScenarioSpec
     from arise.validate import check
 
     meta_options = store.meta().get("options")
-    base = GenerateOptions.model_validate(meta_options if isinstance(meta_options, dict) else {})
+    stored = meta_options if isinstance(meta_options, dict) else {}
+    trusted = {k: v for k, v in stored.items() if k not in UNTRUSTED_FILE_OPTIONS}
+    base = GenerateOptions.model_validate({**trusted, "map_dir": map_dir})
     runner = TaskRunner(base, Path("."))
     count = 0
     try:

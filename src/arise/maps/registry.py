@@ -3,24 +3,25 @@
 A script names its map (`param map = ...`, `Town = 'Town05'`, `param carla_map = ...`).
 We resolve that name against the maps we ship and, with --map-dir, the CARLA towns;
 a town we do not have is replaced by an available map with the features it is known for,
-and the choice says so. Map files are copied into the user cache, because Scenic writes a
-`.snet` cache next to the map and the map folder may be read-only.
+and the choice says so. Map files are copied into the user cache (`arise.maps.cache`),
+because Scenic writes a `.snet` cache next to the map and the map folder may be read-only;
+the path in a choice is always that copy.
 """
 
 from __future__ import annotations
 
-import hashlib
 import json
 import os
-import tempfile
 from dataclasses import dataclass, field
 from importlib import resources
 from pathlib import Path
 from typing import Any
 
-from arise.errors import AriseError
-from arise.maps.choice import MapChoice
-from arise.paths import cache_dir
+from arise.maps.cache import cached_copy
+from arise.maps.choice import MapChoice, is_safe_map_name
+from arise.maps.errors import MapError
+
+__all__ = ["MapChoice", "MapEntry", "MapError", "MapRegistry", "cached_copy"]
 
 DEFAULT_MAP = "arise_intersection4"
 GENERIC_NEEDS = ("intersection4", "signalized", "multilane", "sidewalk")
@@ -76,12 +77,25 @@ class MapRegistry:
         if self.map_dir is not None:
             if not self.map_dir.is_dir():
                 raise MapError(f"map folder {self.map_dir} does not exist")
-            for path in sorted(self.map_dir.glob("*.xodr")):
-                features = self.known_features.get(path.stem, frozenset())
-                description = towns.get(path.stem, {}).get("description", "")
-                self.entries[path.stem] = MapEntry(
-                    path.stem, path, features, description, "map-dir"
-                )
+            for link in sorted(self.map_dir.glob("*.xodr")):
+                name = link.stem
+                if not is_safe_map_name(name):
+                    continue  # a name that cannot be a file stem everywhere we write it
+                # The user's own folder: a link in it is the user's choice of file.
+                path = link.resolve() if link.is_symlink() else link
+                features = self.known_features.get(name, frozenset())
+                description = towns.get(name, {}).get("description", "")
+                self.entries[name] = MapEntry(name, path, features, description, "map-dir")
+
+    def exact(self, name: str) -> MapChoice | None:
+        """The map of exactly this name, copied into the cache; None when it is not here
+        (no substitute: a saved trace must be shown on the map it ran on)."""
+        entry = self.entries.get(name)
+        if entry is None or entry.path is None:
+            return None
+        return MapChoice(
+            requested=name, name=entry.name, path=str(cached_copy(entry.path, entry.name))
+        )
 
     def names(self) -> list[str]:
         return sorted(self.entries)
@@ -125,7 +139,7 @@ class MapRegistry:
             entry = self.entries[requested]
             assert entry.path is not None
             return MapChoice(
-                requested=requested, name=entry.name, path=str(cached_copy(entry.path))
+                requested=requested, name=entry.name, path=str(cached_copy(entry.path, entry.name))
             )
         if requested is None:
             entry = self.entries.get(DEFAULT_MAP) or self.best_match(frozenset(GENERIC_NEEDS))
@@ -133,7 +147,7 @@ class MapRegistry:
             return MapChoice(
                 requested=None,
                 name=entry.name,
-                path=str(cached_copy(entry.path)),
+                path=str(cached_copy(entry.path, entry.name)),
                 substituted=True,
                 reason=f"the script names no map; used {entry.name}",
             )
@@ -145,7 +159,7 @@ class MapRegistry:
         return MapChoice(
             requested=requested,
             name=entry.name,
-            path=str(cached_copy(entry.path)),
+            path=str(cached_copy(entry.path, entry.name)),
             substituted=True,
             reason=(
                 f"map {requested} is not available here; substituted {entry.name}, which "
@@ -153,10 +167,6 @@ class MapRegistry:
                 f"({', '.join(sorted(wanted))})"
             ),
         )
-
-
-class MapError(AriseError):
-    """A map cannot be found or read; the message says what to do."""
 
 
 def _file_candidates(name: str, script_dir: Path | None) -> list[Path]:
@@ -167,19 +177,3 @@ def _file_candidates(name: str, script_dir: Path | None) -> list[Path]:
     if script_dir is not None:
         found.insert(0, script_dir / path)
     return found
-
-
-def cached_copy(path: Path) -> Path:
-    """Copy a map into the cache (keyed by content) so Scenic's .snet lands there."""
-    data = path.read_bytes()
-    digest = hashlib.sha256(data).hexdigest()[:16]
-    folder = cache_dir() / "maps" / digest
-    target = folder / f"{path.stem}.xodr"
-    if target.exists():
-        return target
-    folder.mkdir(parents=True, exist_ok=True)
-    handle, temporary = tempfile.mkstemp(suffix=".xodr", dir=folder)
-    with os.fdopen(handle, "wb") as out:
-        out.write(data)
-    os.replace(temporary, target)
-    return target

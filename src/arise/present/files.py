@@ -1,25 +1,20 @@
-"""Whole files or none: every output is written to a temporary name and renamed."""
+"""Whole files or none: every output is written to a temporary name and renamed
+(`arise.atomic`: an unwritable or full folder is one clear OutputError, no leftovers)."""
 
 from __future__ import annotations
 
-import os
-import tempfile
-from pathlib import Path
+from arise.atomic import (
+    OutputError,
+    copy_file_atomic,
+    write_bytes_atomic,
+    write_chunks_atomic,
+    write_text_atomic,
+)
 
-
-def write_bytes_atomic(path: Path, data: bytes) -> Path:
-    path.parent.mkdir(parents=True, exist_ok=True)
-    handle, temporary = tempfile.mkstemp(prefix=f".{path.name}.", dir=path.parent)
-    try:
-        with os.fdopen(handle, "wb") as out:
-            out.write(data)
-        os.chmod(temporary, 0o644)  # mkstemp makes 0600; these files are meant to be shared
-        os.replace(temporary, path)
-    finally:
-        if os.path.exists(temporary):
-            os.unlink(temporary)
-    return path
-
-
-def write_text_atomic(path: Path, text: str) -> Path:
-    return write_bytes_atomic(path, text.encode("utf-8"))
+__all__ = [
+    "OutputError",
+    "copy_file_atomic",
+    "write_bytes_atomic",
+    "write_chunks_atomic",
+    "write_text_atomic",
+]

@@ -4,19 +4,36 @@ A run folder (scenario.scenic + report.json, as `arise generate` writes it) give
 saved trace.json when that belongs to the script; otherwise the script is checked again
 in the confined validator with the run's own seed and step count. A bare script is
 always checked. Nothing here runs a script in this process.
+
+A run folder is untrusted (anyone may hand one over): its files are read only when they
+are regular files within size limits and validated strictly; no path in them is used
+(the map of a saved trace is found again by name, in the registry or as `NAME.xodr` in
+the run folder itself), and report.json may choose the seed, steps and time limit of a
+new check but not the maps it sees.
 """
 
 from __future__ import annotations
 
-import json
+import stat
 from dataclasses import dataclass, field
 from enum import StrEnum
 from pathlib import Path
-from typing import Any
+from typing import Annotated
 
+from pydantic import BaseModel, Field, StringConstraints, ValidationError
+
+from arise.limits import (
+    MAX_RECHECK_TIMEOUT,
+    MAX_REPORT_FILE_BYTES,
+    MAX_RUN_SCRIPT_BYTES,
+    MAX_SPAWN_ATTEMPTS,
+    MAX_STEPS,
+)
+from arise.maps.cache import cached_copy, trusted_entry
 from arise.maps.registry import MapError, MapRegistry
 from arise.present.errors import RunNotExecuted, RunNotFound, ScriptDidNotRun
-from arise.present.tracefile import SavedTrace, read_trace, script_digest
+from arise.present.tracefile import SavedTrace, load_trace_file, script_digest
+from arise.present.untrusted import UntrustedFileError, read_json, read_text
 from arise.validate import CheckOptions, WorkerPool, check
 from arise.validate.types import CheckResult, MapChoice, SimulationFacts, Stage
 
@@ -36,7 +53,8 @@ class Origin(StrEnum):
 
 @dataclass
 class TraceSource:
-    """A trace, the map it ran on and the script it came from."""
+    """A trace, the map it ran on and the script it came from. `map` is always a choice
+    the parent made (a check's, or a saved trace's map found again by name)."""
 
     script: Path
     simulation: SimulationFacts
@@ -62,52 +80,110 @@ class TraceSource:
 
 
 def map_file(choice: MapChoice, map_dir: str | None = None) -> Path:
-    """The map file a trace ran on: its recorded path, else the same map found by name
-    (a trace saved on another machine records a cache path that is not here)."""
-    path = Path(choice.path)
-    if path.is_file():
-        return path
+    """The map file a trace ran on: the parent's own cached copy when the choice's path is
+    one (`trusted_entry`), else the same map found by name in the registry."""
+    entry = trusted_entry(choice.path)
+    if entry is None or entry.stem != choice.name:
+        try:
+            found = MapRegistry(map_dir).exact(choice.name)
+        except MapError as error:
+            raise RunNotFound(
+                f"the map {choice.name} of this trace is not available: {error}"
+            ) from None
+        if found is None:
+            raise RunNotFound(
+                f"the map {choice.name} of this trace is not available here"
+                " (give --map-dir with its .xodr)"
+            )
+        entry = Path(found.path)
+    return entry
+
+
+def saved_map(choice: MapChoice, map_dir: str | None, folder: Path) -> MapChoice:
+    """The map a saved trace names, found again by its name alone: in the registry, else
+    as a regular `NAME.xodr` in the run folder itself (never the path the trace records)."""
     try:
-        found = MapRegistry(map_dir).resolve(choice.name)
+        found = MapRegistry(map_dir).exact(choice.name)
+        if found is None:
+            local = folder / f"{choice.name}.xodr"  # a safe file stem, by the schema
+            if not _is_plain_file(local):
+                raise RunNotFound(
+                    f"the map {choice.name} of this trace is not available here (give "
+                    f"--map-dir with its .xodr, or put {choice.name}.xodr in {folder})"
+                )
+            found = MapChoice(requested=choice.name, name=choice.name, path=str(cached_copy(local)))
     except MapError as error:
         raise RunNotFound(
             f"the map {choice.name} of this trace is not available: {error}"
         ) from None
-    if found.name != choice.name:
-        raise RunNotFound(
-            f"the map {choice.name} of this trace is not available here"
-            " (give --map-dir with its .xodr)"
-        )
-    return Path(found.path)
+    return found.model_copy(
+        update={
+            "requested": choice.requested,
+            "substituted": choice.substituted,
+            "reason": choice.reason,
+        }
+    )
 
 
-def _report(folder: Path) -> dict[str, Any]:
+def _is_plain_file(path: Path) -> bool:
     try:
-        data = json.loads((folder / RUN_REPORT).read_text(encoding="utf-8"))
-    except (OSError, ValueError) as error:
-        raise RunNotFound(f"{folder / RUN_REPORT} cannot be read: {error}") from None
+        return stat.S_ISREG(path.lstat().st_mode)
+    except OSError:
+        return False
+
+
+class _RunOptions(BaseModel):
+    """The options of report.json a new check of the run's script takes (others, such as
+    `map_dir`, are ignored: a run folder must not point this process at other files)."""
+
+    seed: Annotated[int, Field(ge=-(2**63), le=2**64)] | None = None
+    steps: Annotated[int, Field(ge=1, le=MAX_STEPS)] | None = None
+    spawn_attempts: Annotated[int, Field(ge=1, le=MAX_SPAWN_ATTEMPTS)] | None = None
+    check_timeout: (
+        Annotated[float, Field(allow_inf_nan=False, gt=0, le=MAX_RECHECK_TIMEOUT)] | None
+    ) = None
+
+
+class RunReport(BaseModel):
+    """What this module reads of a run's report.json."""
+
+    status: Annotated[str, StringConstraints(max_length=64)] | None = None
+    options: _RunOptions = Field(default_factory=_RunOptions)
+
+
+def _report(folder: Path) -> RunReport:
+    path = folder / RUN_REPORT
+    try:
+        data = read_json(path, MAX_REPORT_FILE_BYTES)
+    except (OSError, UntrustedFileError) as error:
+        raise RunNotFound(f"{path} cannot be read: {_reason(error)}") from None
     if not isinstance(data, dict):
-        raise RunNotFound(f"{folder / RUN_REPORT} is not a run report")
-    return data
+        raise RunNotFound(f"{path} is not a run report")
+    try:
+        return RunReport.model_validate(data)
+    except ValidationError as error:
+        first = error.errors(include_url=False, include_input=False)[0]
+        where = ".".join(str(part) for part in first["loc"][:4])
+        raise RunNotFound(f"{path} is not a valid run report ({where}: {first['msg']})") from None
 
 
-def run_check_options(report: dict[str, Any], map_dir: str | None) -> CheckOptions:
-    """The check a run made of its script, so a new check gives the same scene."""
-    options = report.get("options") if isinstance(report.get("options"), dict) else {}
-    assert isinstance(options, dict)
-    chosen: dict[str, Any] = {"sample_iterations": RECHECK_SAMPLE_ITERATIONS}
-    for ours, theirs in (
-        ("seed", "seed"),
-        ("steps", "steps"),
-        ("spawn_attempts", "spawn_attempts"),
-        ("timeout", "check_timeout"),
-        ("map_dir", "map_dir"),
-    ):
-        if options.get(theirs) is not None:
-            chosen[ours] = options[theirs]
-    if map_dir is not None:
-        chosen["map_dir"] = map_dir
-    return CheckOptions.model_validate(chosen)
+def _reason(error: Exception) -> str:
+    return (error.strerror if isinstance(error, OSError) else None) or str(error)
+
+
+def run_check_options(report: RunReport, map_dir: str | None) -> CheckOptions:
+    """The check a run made of its script, so a new check gives the same scene. The maps
+    are the caller's (`map_dir`), never the report's."""
+    options = report.options
+    chosen = {
+        "sample_iterations": RECHECK_SAMPLE_ITERATIONS,
+        "seed": options.seed,
+        "steps": options.steps,
+        "spawn_attempts": options.spawn_attempts,
+        "timeout": options.check_timeout,
+        "map_dir": map_dir,
+    }
+    return CheckOptions.model_validate({k: v for k, v in chosen.items() if v is not None})
 
 
 def from_check(
@@ -161,25 +237,28 @@ def load_trace(
 
 def _from_run(folder: Path, pool: WorkerPool | None, map_dir: str | None) -> TraceSource:
     script = folder / RUN_SCRIPT
-    if not script.is_file() or not (folder / RUN_REPORT).is_file():
+    if not _is_plain_file(script) or not _is_plain_file(folder / RUN_REPORT):
         raise RunNotFound(
             f"{folder} is not a run folder: it needs {RUN_SCRIPT} and {RUN_REPORT}"
-            " (as `arise generate -o DIR` writes them)"
+            " (as `arise generate -o DIR` writes them, regular files)"
         )
     report = _report(folder)
-    text = script.read_text(encoding="utf-8")
-    status = report.get("status")
+    try:
+        text = read_text(script, MAX_RUN_SCRIPT_BYTES)
+    except (OSError, UntrustedFileError) as error:
+        raise RunNotFound(f"{script} cannot be read: {_reason(error)}") from None
+    status = report.status
     if status != EXECUTED or text.startswith(FAILED_MARKER):
         raise RunNotExecuted(
             f"the run in {folder} never executed (status: {status}); there is no motion to "
             "show or export - see its report.json for the last diagnostic"
         )
-    saved = read_trace(folder, text)
+    saved = load_trace_file(folder, text)
     if saved is not None:
         return TraceSource(
             script=script,
             simulation=saved.simulation,
-            map=saved.map,
+            map=saved_map(saved.map, map_dir, folder) if saved.map is not None else None,
             origin=Origin.SAVED,
             seed=saved.seed,
             steps=saved.steps,

@@ -19,7 +19,7 @@ from typing import Any
 
 from arise.present.actors import EntityKind, actor_class, height_of
 from arise.present.errors import ExportError
-from arise.present.files import write_bytes_atomic
+from arise.present.files import copy_file_atomic, write_bytes_atomic
 from arise.present.source import TraceSource, map_file
 from arise.present.trajectory import TOLERANCE_M, Vertex, osc_heading, simplify
 from arise.present.weather import WeatherValues, weather_values
@@ -261,11 +261,13 @@ def write_export(
     started = time.perf_counter()
     if source.map is None:
         raise ExportError("the trace names no map; OpenSCENARIO needs the road network")
+    # The parent's own copy of the map, and its name, a plain file stem by the schema: the
+    # copy lands in out_dir and nowhere else.
     road = map_file(source.map, map_dir)
     xodr_name = f"{source.map.name}.xodr"
     scenario, counts, notes = build_scenario(source, xodr_name, ego, tolerance)
     data = scenario_xml(scenario)
-    xodr = write_bytes_atomic(out_dir / xodr_name, road.read_bytes())
+    xodr = copy_file_atomic(road, out_dir / xodr_name)
     xosc_path = write_bytes_atomic(out_dir / XOSC_NAME, data)
     return ExportFiles(
         xosc=xosc_path,

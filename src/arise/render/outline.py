@@ -19,11 +19,27 @@ SAME_EDGE = 0.2
 
 
 def load_network(map_path: str | Path) -> Any:
-    """Scenic's road network of a map file we chose (the registry's cached copy, whose
-    parsed cache was written by a process that never ran a script)."""
+    """Scenic's road network of a map file.
+
+    Scenic's parsed cache (`.snet`) is a pickle, so it is loaded only for a map in our
+    cache that `trusted_entry` vouches for (inside the cache, no symbolic link, content
+    matching its folder's digest), whose `.snet` only the confined preparer writes
+    (`arise.validate.map_cache`). Any other file is parsed as OpenDRIVE without reading
+    or writing a cache: no file a script or a run folder could have named or written is
+    ever unpickled here.
+    """
     from scenic.domains.driving.roads import Network
 
-    return Network.fromFile(str(map_path))
+    from arise.maps.cache import trusted_entry
+    from arise.maps.errors import MapError
+
+    path = Path(map_path)
+    entry = trusted_entry(path)
+    if entry is not None:
+        return Network.fromFile(str(entry), useCache=True, writeCache=False)
+    if path.suffix != ".xodr":
+        raise MapError(f"{path} is not an OpenDRIVE map (.xodr)")
+    return Network.fromFile(str(path), useCache=False, writeCache=False)
 
 
 def _shape(region: Any) -> Any:

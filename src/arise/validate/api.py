@@ -1,21 +1,42 @@
-"""`check()`: the library call behind `arise check`."""
+"""`check()`: the library call behind `arise check`.
+
+The worker's result is untrusted (the script runs in the process that writes it and may
+forge it): the parent keeps only the facts, validated by a strict schema
+(`WorkerResult`), and says itself which script, map and world model the check ran on and
+where the picture went. A result that breaks the schema is a `ProtocolViolation`.
+"""
 
 from __future__ import annotations
 
 import base64
+import binascii
 import os
 import tempfile
 from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
+from pydantic import ValidationError
+
+from arise.atomic import write_bytes_atomic
 from arise.maps.registry import MapError, MapRegistry
 from arise.validate.carla_server import unreachable_reason
 from arise.validate.map_cache import MapPreparationError, prepare_map
 from arise.validate.pool import SandboxRequired, WorkerDied, WorkerPool
 from arise.validate.sandbox import required_by_settings
 from arise.validate.script_info import read_script_info
-from arise.validate.types import CheckOptions, CheckResult, Diagnostic, Simulator, Stage
+from arise.validate.types import (
+    PARENT_FIELDS,
+    CheckOptions,
+    CheckResult,
+    Diagnostic,
+    MapChoice,
+    Simulator,
+    Stage,
+    WorkerResult,
+)
+
+PNG_SIGNATURE = b"\x89PNG\r\n\x1a\n"
 
 
 def _failure(
@@ -40,7 +61,8 @@ def check(
     """Gate, compile, sample and simulate one Scenic file in a confined worker.
 
     Never raises for a bad script: every failure is in `result.diagnostic`, and
-    `result.sandbox` says which confinement the script ran under.
+    `result.sandbox` says which confinement the script ran under. Raises OutputError
+    only when the picture asked for (`png`) cannot be written where it was asked.
     """
     options = (options or CheckOptions()).model_copy(update=overrides)
     if not options.require_sandbox and required_by_settings():
@@ -113,17 +135,35 @@ def check(
     finally:
         if own_pool:
             active.close()
-    png_data = raw.pop("png_data", None)
+    return _accepted(raw, name, choice, info.model, options.png)
+
+
+def _accepted(
+    raw: dict[str, Any], name: str, choice: MapChoice, model: str | None, png: str | None
+) -> CheckResult:
+    """The check's result from the worker's answer: the facts after the strict schema, the
+    rest from the parent's own request."""
+    png_data = raw.get("png_data")
     try:
-        result = CheckResult.model_validate(raw)
-    except ValueError as error:
-        return _failure(
-            name,
-            Stage.SIMULATE,
-            "ProtocolViolation",
-            f"the worker's result was malformed ({str(error).splitlines()[0]})",
+        facts = WorkerResult.model_validate(
+            {key: value for key, value in raw.items() if key not in PARENT_FIELDS}
         )
-    result.script = name
+    except ValidationError as error:
+        return _violation(name, choice, model, raw, _first_problem(error))
+    result = CheckResult(
+        ok=False,
+        script=name,
+        map=choice,
+        model=model,
+        diagnostic=facts.diagnostic,
+        warnings=facts.warnings,
+        timings=facts.timings,
+        spawn_attempts_used=facts.spawn_attempts_used,
+        sample_iterations_used=facts.sample_iterations_used,
+        simulation=facts.simulation,
+        simulation_rejections=facts.simulation_rejections,
+        sandbox=facts.sandbox,
+    )
     # The verdict follows from the facts, not from a flag the script's process may forge.
     result.ok = result.diagnostic is None and result.simulation is not None
     if not result.ok and result.diagnostic is None:
@@ -133,8 +173,48 @@ def check(
             message="the check reported success without a simulation (a forged result?)",
             hint="the script wrote on the validator's result channel; remove that code.",
         )
-    result.png = _write_png(options.png, png_data) if result.png else None
+    picture = _png_bytes(png_data) if png else None
+    if png and png_data is not None and picture is None:
+        result.warnings.append("the worker's picture was not a PNG image; none was written")
+    result.png = _write_png(png, picture)
     return result
+
+
+def _first_problem(error: ValidationError) -> str:
+    """The first schema violation, in one short line (never the offending data)."""
+    first = error.errors(include_url=False, include_input=False)[0]
+    where = ".".join(str(part) for part in first["loc"][:6]) or "result"
+    return f"{where}: {first['msg']}"[:300]
+
+
+def _violation(
+    name: str, choice: MapChoice, model: str | None, raw: dict[str, Any], problem: str
+) -> CheckResult:
+    result = _failure(
+        name,
+        Stage.SIMULATE,
+        "ProtocolViolation",
+        f"the worker's result broke the result schema ({problem})",
+        "a script that writes on the validator's result channel forges its result; "
+        "remove that code.",
+    )
+    result.map, result.model = choice, model
+    try:  # the pool's own stamp, from before the script ran
+        result.sandbox = WorkerResult.model_validate({"sandbox": raw.get("sandbox")}).sandbox
+    except ValidationError:
+        result.sandbox = None
+    return result
+
+
+def _png_bytes(data: object) -> bytes | None:
+    """The picture the worker drew, when it is a PNG image at all."""
+    if not isinstance(data, str):
+        return None
+    try:
+        decoded = base64.b64decode(data, validate=True)
+    except (binascii.Error, ValueError):
+        return None
+    return decoded if decoded.startswith(PNG_SIGNATURE) else None
 
 
 def _trusted_map_file(requested: str | None, script: Path) -> str | None:
@@ -155,17 +235,12 @@ def _trusted_map_file(requested: str | None, script: Path) -> str | None:
     return str(candidate)
 
 
-def _write_png(target: str | None, data: str | None) -> str | None:
-    """Write the picture the worker drew into the place the caller asked for, whole."""
+def _write_png(target: str | None, data: bytes | None) -> str | None:
+    """Write the picture the worker drew into the place the caller asked for, whole
+    (OutputError, naming the folder, when it cannot be written there)."""
     if not target or not data:
         return None
-    destination = Path(target)
-    destination.parent.mkdir(parents=True, exist_ok=True)
-    handle, temporary = tempfile.mkstemp(suffix=".png", dir=destination.parent)
-    with os.fdopen(handle, "wb") as out:
-        out.write(base64.b64decode(data))
-    os.replace(temporary, destination)
-    return str(destination)
+    return str(write_bytes_atomic(Path(target), data))
 
 
 def check_text(text: str, options: CheckOptions | None = None, **kwargs: Any) -> CheckResult:

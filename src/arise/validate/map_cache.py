@@ -5,7 +5,8 @@ later compiles load it in a fraction of a second. A pickle is code, so the file 
 come from a worker that ran an untrusted script: workers are confined without write
 access to the map cache, and this module prepares the `.snet` in a fresh, confined
 process that only parses the map. The parent moves the finished file into place
-atomically, under a lock, so concurrent checks never read half a cache.
+atomically, under a lock, so concurrent checks never read half a cache. Only maps in the
+cache are prepared (`arise.maps.cache`), and the parent loads a `.snet` only from there.
 """
 
 from __future__ import annotations
@@ -20,6 +21,7 @@ import tempfile
 from pathlib import Path
 
 from arise.errors import AriseError
+from arise.maps.cache import PREPARE_LOCK, maps_root
 from arise.paths import cache_dir
 
 PREPARE_TIMEOUT = 300.0  # seconds: CARLA's Town04 takes ~8 s idle, far more on a busy box
@@ -38,7 +40,11 @@ def prepare_map(xodr: Path) -> None:
     if xodr.suffix != ".xodr" or cache_file(xodr).exists():
         return
     folder = xodr.parent
-    with open(folder / ".prepare.lock", "a") as lock:
+    if xodr.is_symlink() or folder.resolve().parent != maps_root().resolve():
+        raise MapPreparationError(
+            f"{xodr} is not a map in arise's cache; only copies there are prepared"
+        )
+    with open(folder / PREPARE_LOCK, "a") as lock:
         fcntl.flock(lock, fcntl.LOCK_EX)
         if cache_file(xodr).exists():
             return

@@ -2,18 +2,69 @@
 
 Everything here is JSON-serialisable with `model_dump()`, so a result can be written to a
 report, sent over a pipe or compared in a test.
+
+The facts of a simulation come from the worker, whose script may forge them, or from a
+run folder anyone may hand over: the schemas below are strict (no unknown fields, finite
+numbers, non-negative where physical, bounded sizes: `arise.limits`), so bad data is a
+validation error, never a crash or a hang further on.
 """
 
 from __future__ import annotations
 
 from enum import StrEnum
+from typing import Annotated
 
-from pydantic import BaseModel, Field
+from pydantic import BaseModel, ConfigDict, Field, StringConstraints, model_validator
 
+from arise.limits import (
+    MAX_AGENTS,
+    MAX_EVENT_FIELDS,
+    MAX_EVENT_LIST,
+    MAX_EVENTS,
+    MAX_MAGNITUDE,
+    MAX_MESSAGE,
+    MAX_NAME,
+    MAX_NOTE,
+    MAX_PARAMS,
+    MAX_REJECTIONS,
+    MAX_STEPS,
+    MAX_TIMESTEP,
+    MAX_TIMINGS,
+    MAX_TOTAL_POINTS,
+    MAX_TRACE_POINTS,
+    MAX_WARNINGS,
+)
 from arise.maps.choice import MapChoice
 from arise.vocabulary import Side
 
 __all__ = ["MapChoice"]  # re-exported: results carry the registry's choice
+
+# Bounded building blocks of the strict schemas (see `arise.limits`).
+Coordinate = Annotated[float, Field(allow_inf_nan=False, ge=-MAX_MAGNITUDE, le=MAX_MAGNITUDE)]
+Magnitude = Annotated[float, Field(allow_inf_nan=False, ge=0, le=MAX_MAGNITUDE)]
+Step = Annotated[int, Field(ge=0, le=MAX_STEPS)]
+Count = Annotated[int, Field(ge=0, le=2**31)]
+Name = Annotated[str, StringConstraints(max_length=MAX_NAME)]
+# An agent, its class or behavior: identifiers (names a Python class can have).
+Identifier = Annotated[str, StringConstraints(pattern=r"^\w{1,128}$")]
+Note = Annotated[str, StringConstraints(max_length=MAX_NOTE)]
+Message = Annotated[str, StringConstraints(max_length=MAX_MESSAGE)]
+Notes = Annotated[list[Note], Field(max_length=MAX_WARNINGS)]
+EventValue = (
+    Annotated[bool, Field(strict=True)]
+    | Annotated[int, Field(strict=True)]
+    | Coordinate
+    | Note
+    | Annotated[list[Name], Field(max_length=MAX_EVENT_LIST)]
+    | None
+)
+Event = Annotated[dict[Name, EventValue], Field(max_length=MAX_EVENT_FIELDS)]
+
+
+class Strict(BaseModel):
+    """Refuses fields it does not know: a result or a trace holds only what we defined."""
+
+    model_config = ConfigDict(extra="forbid")
 
 
 class Stage(StrEnum):
@@ -48,13 +99,13 @@ class Mechanism(StrEnum):
     NAMESPACES = "namespaces"
 
 
-class SandboxReport(BaseModel):
+class SandboxReport(Strict):
     """Which confinement a script ran under: every result carries one."""
 
-    active: list[Mechanism] = Field(default_factory=list)
-    missing: list[Mechanism] = Field(default_factory=list)
-    landlock_abi: int = 0
-    notes: list[str] = Field(default_factory=list)
+    active: list[Mechanism] = Field(default_factory=list, max_length=len(Mechanism))
+    missing: list[Mechanism] = Field(default_factory=list, max_length=len(Mechanism))
+    landlock_abi: int = Field(default=0, ge=0, le=1000)
+    notes: Notes = Field(default_factory=list)
 
     @property
     def full(self) -> bool:
@@ -86,28 +137,28 @@ def confinement_summary(labels: list[str | None]) -> str:
     return "; ".join(f"{label}: {count}" for label, count in sorted(counts.items()))
 
 
-class Rejection(BaseModel):
+class Rejection(Strict):
     """One reason Scenic threw away samples, with how often and where."""
 
-    reason: str
-    count: int
-    line: int | None = None
-    section: str | None = None
-    code: str | None = None
+    reason: Message
+    count: Count
+    line: Count | None = None
+    section: Name | None = None
+    code: Message | None = None
 
 
-class Diagnostic(BaseModel):
+class Diagnostic(Strict):
     """Why a script did not execute, precise enough to repair it."""
 
     stage: Stage
-    error_type: str
-    message: str
-    line: int | None = None
-    column: int | None = None
-    section: str | None = None
-    excerpt: str | None = None
-    hint: str | None = None
-    rejections: list[Rejection] = Field(default_factory=list)
+    error_type: Name
+    message: Message
+    line: Count | None = None
+    column: Count | None = None
+    section: Name | None = None
+    excerpt: Message | None = None
+    hint: Message | None = None
+    rejections: list[Rejection] = Field(default_factory=list, max_length=MAX_REJECTIONS)
 
     def one_line(self) -> str:
         where = f" line {self.line}" if self.line else ""
@@ -115,18 +166,18 @@ class Diagnostic(BaseModel):
         return f"{self.stage.value}{where}{section}: {self.error_type}: {self.message}"
 
 
-class TracePoint(BaseModel):
-    step: int
-    x: float
-    y: float
-    heading: float
-    speed: float
+class TracePoint(Strict):
+    step: Step
+    x: Coordinate
+    y: Coordinate
+    heading: Coordinate
+    speed: Magnitude
 
 
-class LaneChange(BaseModel):
+class LaneChange(Strict):
     """One move of an agent's centre into a neighbouring lane, read from the road network."""
 
-    step: int
+    step: Step
     side: Side  # seen in the agent's direction of travel
     # The lane entered runs against the agent's direction of travel (an overtaking or
     # bypassing car in the oncoming lane); False for a move back from it or within its group.
@@ -135,60 +186,74 @@ class LaneChange(BaseModel):
     from_opposite: bool = False
 
 
-class AgentTrace(BaseModel):
-    name: str
-    kind: str
-    blueprint: str | None = None
-    width: float
-    length: float
+class AgentTrace(Strict):
+    name: Identifier
+    kind: Identifier
+    blueprint: Annotated[str, StringConstraints(pattern=r"^[\w.\-]{1,128}$")] | None = None
+    width: Magnitude
+    length: Magnitude
     is_ego: bool = False
     # The class name of the behavior it ran (`AdversaryBehavior` marks our adversary).
-    behavior: str | None = None
+    behavior: Identifier | None = None
     # Steps at which the agent was inside a junction of the map.
-    intersection_steps: int = 0
+    intersection_steps: Step = 0
     # Metres from its first position to the nearest junction (None: no road network).
-    junction_gap: float | None = None
+    junction_gap: Magnitude | None = None
     # Moves into a neighbouring lane of the same road (None: no road network to tell).
-    lane_changes: int | None = None
+    lane_changes: Step | None = None
     # Every move across a lane boundary outside junctions, in order (same-direction lane
     # changes and moves into and out of the oncoming lanes).
-    lane_change_log: list[LaneChange] = Field(default_factory=list)
+    lane_change_log: list[LaneChange] = Field(default_factory=list, max_length=MAX_TRACE_POINTS)
     # Steps spent in a lane that runs against the agent's travel, outside junctions.
-    opposite_lane_steps: int | None = None
+    opposite_lane_steps: Step | None = None
     # It moved back across a lane boundary within a few seconds of crossing it, i.e. it
     # wove (a controller fault or an erratic driver), not a deliberate lane change.
     weaving: bool | None = None
-    trajectory: list[TracePoint] = Field(default_factory=list)
+    trajectory: list[TracePoint] = Field(default_factory=list, max_length=MAX_TRACE_POINTS)
 
 
-class Collision(BaseModel):
-    first: str
-    second: str
-    step: int
-    time: float
+class Collision(Strict):
+    first: Identifier
+    second: Identifier
+    step: Step
+    time: Magnitude
 
 
-class EgoPairFacts(BaseModel):
+class EgoPairFacts(Strict):
     """How close another agent came to the ego: the criticality numbers."""
 
-    other: str
-    min_distance: float
-    min_distance_step: int
-    min_ttc: float | None = None
+    other: Identifier
+    # -1: no distance could be measured (no common steps).
+    min_distance: Annotated[float, Field(allow_inf_nan=False, ge=-1, le=MAX_MAGNITUDE)]
+    min_distance_step: Step
+    min_ttc: Magnitude | None = None
     collided: bool = False
 
 
-class SimulationFacts(BaseModel):
-    steps: int
-    timestep: float
-    termination_type: str
-    termination_reason: str
-    agents: list[AgentTrace]
-    collisions: list[Collision] = Field(default_factory=list)
-    ego_pairs: list[EgoPairFacts] = Field(default_factory=list)
-    events: list[dict[str, object]] = Field(default_factory=list)
+class SimulationFacts(Strict):
+    steps: Step
+    timestep: Annotated[float, Field(allow_inf_nan=False, gt=0, le=MAX_TIMESTEP)]
+    # Scenic's TerminationType name (e.g. timeLimit, terminatedByMonitor).
+    termination_type: Annotated[str, StringConstraints(pattern=r"^\w{1,64}$")]
+    termination_reason: Note
+    agents: list[AgentTrace] = Field(max_length=MAX_AGENTS)
+    collisions: list[Collision] = Field(
+        default_factory=list, max_length=MAX_AGENTS * (MAX_AGENTS - 1) // 2
+    )
+    ego_pairs: list[EgoPairFacts] = Field(default_factory=list, max_length=MAX_AGENTS)
+    events: list[Event] = Field(default_factory=list, max_length=MAX_EVENTS)
     # Global parameters of the scene that ran (weather, OPT_* values), as text.
-    params: dict[str, str] = Field(default_factory=dict)
+    params: dict[Name, Note] = Field(default_factory=dict, max_length=MAX_PARAMS)
+
+    @model_validator(mode="after")
+    def _bounded_in_total(self) -> SimulationFacts:
+        """Per-agent bounds alone would still allow 256 x 20,001 points."""
+        total = sum(len(agent.trajectory) for agent in self.agents)
+        if total > MAX_TOTAL_POINTS:
+            raise ValueError(
+                f"the trace holds {total} trajectory points; the limit is {MAX_TOTAL_POINTS}"
+            )
+        return self
 
 
 class CheckOptions(BaseModel):
@@ -210,6 +275,29 @@ class CheckOptions(BaseModel):
     require_sandbox: bool = False
     # Skip the static gate (tests use it to prove the OS-level confinement holds alone).
     static_gate: bool = True
+
+
+class WorkerResult(Strict):
+    """What the parent takes from a worker's result: the facts of the check, validated.
+
+    Never where the check ran or what it wrote: the map, the world model, the script's
+    name and the picture's path come from the request the parent made, because a script
+    that forges its result line could name any file there.
+    """
+
+    diagnostic: Diagnostic | None = None
+    warnings: Notes = Field(default_factory=list)
+    timings: dict[Name, Magnitude] = Field(default_factory=dict, max_length=MAX_TIMINGS)
+    spawn_attempts_used: Count = 0
+    sample_iterations_used: Count = 0
+    simulation: SimulationFacts | None = None
+    simulation_rejections: list[Rejection] = Field(default_factory=list, max_length=MAX_REJECTIONS)
+    # Stamped by the pool from the worker's first message, sent before any script ran.
+    sandbox: SandboxReport | None = None
+
+
+#: Fields of a worker's result the parent ignores and fills from its own request.
+PARENT_FIELDS = ("ok", "script", "map", "model", "png", "png_data")
 
 
 class CheckResult(BaseModel):
