@@ -14,7 +14,10 @@ Routes (all behind `Guard`):
     GET  /runs/{id}/download.zip    scenario.scenic, .xosc, .xodr, report.json, replay.html
     POST /api/check                 {"script", "name"?} -> the validator's verdict (+ replay)
     GET  /checks/{id}/files/{name}  a checked script's replay
-    GET  /api/health                liveness, for scripts and the load test
+    GET  /api/health                liveness (and the checks under way), for scripts and tests
+
+Run folders are read only through `store` and `safefs` (no links followed, sizes bounded);
+script checks run in a check process (`checker`), so no request's parsing holds the loop.
 """
 
 from __future__ import annotations
@@ -27,11 +30,11 @@ from collections.abc import AsyncIterator
 from contextlib import asynccontextmanager
 from importlib import resources
 from pathlib import Path
-from typing import Any
+from typing import Any, BinaryIO
 
 from fastapi import FastAPI, Request
 from fastapi.exceptions import RequestValidationError
-from fastapi.responses import FileResponse, JSONResponse, Response
+from fastapi.responses import FileResponse, JSONResponse, Response, StreamingResponse
 from fastapi.staticfiles import StaticFiles
 from pydantic import BaseModel
 from sse_starlette.sse import EventSourceResponse
@@ -43,13 +46,15 @@ from arise.generate.extract import check_description
 from arise.generate.pipeline import Generator
 from arise.llm.settings import Settings, load_settings
 from arise.serve.board import JobBoard, RunnerFactory
-from arise.serve.checks import admit_script, check_script
+from arise.serve.checker import ScriptChecker
+from arise.serve.checks import admit_script
 from arise.serve.choices import REPLAY, ModelChoice, model_choices
 from arise.serve.config import ServeConfig
 from arise.serve.errors import BadInput, InputTooLarge, ServeError
 from arise.serve.examples import examples
 from arise.serve.guard import Guard
 from arise.serve.lanes import Runner
+from arise.serve.safefs import stream
 from arise.serve.store import RunStore, new_id
 from arise.serve.view import run_view
 from arise.validate import WorkerPool
@@ -106,12 +111,18 @@ def _static(name: str) -> Path:
     return Path(str(resources.files(__package__).joinpath("static", name)))
 
 
-def _file_response(path: Path) -> Response:
-    media = TEXT_TYPES.get(path.suffix) or mimetypes.guess_type(path.name)[0]
-    return FileResponse(
-        path,
+def _file_response(name: str, opened: tuple[BinaryIO, int]) -> Response:
+    """An opened run file (see `RunStore.file`), streamed as what its name says it is."""
+    handle, size = opened
+    media = TEXT_TYPES.get(Path(name).suffix) or mimetypes.guess_type(name)[0]
+    return StreamingResponse(
+        stream(handle, size),
         media_type=media or "application/octet-stream",
-        headers={"Content-Security-Policy": FILE_CSP, "Cache-Control": "no-cache"},
+        headers={
+            "Content-Security-Policy": FILE_CSP,
+            "Cache-Control": "no-cache",
+            "Content-Length": str(size),
+        },
     )
 
 
@@ -153,10 +164,20 @@ def create_app(
             make_runner or generator_factory(config, active),
             config.max_queued,
         )
-        state.update(board=board, pool=active, checks=RunStore(config.runs_dir / "checks"))
+        checker = ScriptChecker(
+            active,
+            budget=config.check_parse_seconds,
+            slots=config.workers,
+            max_waiting=config.max_queued_checks,
+        )
+        if own_pool:  # nor for its check process to import what it needs
+            threading.Thread(target=checker.warm, name="warm checks", daemon=True).start()
+        checks = RunStore(config.runs_dir / "checks", root_may_link=False)
+        state.update(board=board, pool=active, checks=checks, checker=checker)
         try:
             yield
         finally:
+            checker.close()
             board.close()
             if own_pool:
                 active.close()
@@ -206,9 +227,13 @@ def create_app(
     async def favicon() -> Response:
         return Response(status_code=204)
 
+    def checker() -> ScriptChecker:
+        found: ScriptChecker = state["checker"]
+        return found
+
     @app.get("/api/health")
     async def health() -> dict[str, Any]:
-        return {"ok": True, "jobs": len(board().jobs())}
+        return {"ok": True, "jobs": len(board().jobs()), "checks": checker().counts()}
 
     @app.get("/api/info")
     async def info() -> dict[str, Any]:
@@ -277,12 +302,17 @@ def create_app(
     async def run(run_id: str) -> dict[str, Any]:
         found = board()
         job = found.get(run_id)
-        view = await run_in_threadpool(run_view, found.store.folder(run_id))
+
+        def read() -> dict[str, Any]:
+            with found.store.open(run_id) as folder:
+                return run_view(folder)
+
+        view = await run_in_threadpool(read)
         return {"job": found.describe(job), **view}
 
     @app.get("/runs/{run_id}/files/{name}", include_in_schema=False)
     async def run_file(run_id: str, name: str) -> Response:
-        return _file_response(board().store.file(run_id, name))
+        return _file_response(name, board().store.file(run_id, name))
 
     @app.get("/runs/{run_id}/download.zip", include_in_schema=False)
     async def download(run_id: str) -> Response:
@@ -299,15 +329,14 @@ def create_app(
         checks: RunStore = state["checks"]
         check_id = new_id()
         folder = checks.folder(check_id, create=True)
-        result = await run_in_threadpool(
-            check_script, text, folder, state["pool"], config.options.map_dir
-        )
-        return {"id": check_id, "name": body.name, **result}
+        options = config.options
+        result = await checker().check(text, folder, options.map_dir, options.check_timeout)
+        return {**result, "id": check_id, "name": body.name}
 
     @app.get("/checks/{check_id}/files/{name}", include_in_schema=False)
     async def check_file(check_id: str, name: str) -> Response:
         checks: RunStore = state["checks"]
-        return _file_response(checks.file(check_id, name))
+        return _file_response(name, checks.file(check_id, name))
 
     return app
 

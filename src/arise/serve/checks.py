@@ -17,6 +17,14 @@ from arise.validate import CheckOptions, WorkerPool, check
 from arise.validate.types import CheckResult
 
 SCRIPT_NAME = "scenario.scenic"
+#: Seconds a pasted script may run in the validator (the server passes its own).
+CHECK_TIMEOUT = 60.0
+
+
+def check_options(map_dir: str | None, timeout: float) -> CheckOptions:
+    """What a pasted script is checked with (the server also holds a check's requests
+    to these)."""
+    return CheckOptions(seed=0, map_dir=map_dir, timeout=timeout)
 
 
 def admit_script(text: str, max_bytes: int) -> str:
@@ -64,13 +72,18 @@ def result_view(result: CheckResult, script: str) -> dict[str, Any]:
 
 
 def check_script(
-    text: str, folder: Path, pool: WorkerPool, map_dir: str | None = None
+    text: str,
+    folder: Path,
+    pool: WorkerPool,
+    map_dir: str | None = None,
+    timeout: float = CHECK_TIMEOUT,
 ) -> dict[str, Any]:
-    """Check `text` (saved as folder/scenario.scenic) in the pool; a run adds replay.html."""
+    """Check `text` (saved as folder/scenario.scenic) in the pool; a run adds replay.html.
+    The server calls this in its check process (`checkproc`), never in its own."""
     folder.mkdir(parents=True, exist_ok=True)
     path = folder / SCRIPT_NAME
     write_text_atomic(path, text)
-    options = CheckOptions(seed=0, map_dir=map_dir)
+    options = check_options(map_dir, timeout)
     result = check(path, options, pool=pool)
     view = result_view(result, text)
     view["replay"] = None

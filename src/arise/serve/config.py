@@ -22,6 +22,11 @@ RUNS_ENV = "ARISE_RUNS_DIR"
 MAX_SCRIPT_BYTES = 256 * 1024
 #: Jobs that may wait for one model at once; one more is refused (503).
 MAX_QUEUED = 50
+#: Script checks that may wait for a check process at once; one more is refused (503).
+MAX_QUEUED_CHECKS = 8
+#: Seconds the check process may spend reading a script, or a worker's result, before it
+#: is killed (the script's own run in the validator has its own time-out).
+CHECK_PARSE_SECONDS = 30.0
 _TOKEN = re.compile(r"^[A-Za-z0-9._~-]{8,256}$")
 
 
@@ -52,6 +57,8 @@ class ServeConfig:
     max_description_chars: int = MAX_DESCRIPTION_CHARS
     max_script_bytes: int = MAX_SCRIPT_BYTES
     max_queued: int = MAX_QUEUED
+    max_queued_checks: int = MAX_QUEUED_CHECKS
+    check_parse_seconds: float = CHECK_PARSE_SECONDS
     # Confined validation workers shared by every job and check.
     workers: int = 1
     # A cassette to answer model calls from (offered as the "replay" model, and the default).

@@ -5,6 +5,10 @@
   and the downloads all carry it);
 * on a loopback server, a Host header naming this machine (a web page elsewhere cannot
   reach the server by pointing a DNS name at 127.0.0.1);
+* on a request that changes something (POST, PUT, PATCH, DELETE), no sign of another
+  site: `Sec-Fetch-Site` must be `same-origin` or `none` when a browser sends it, and
+  `Origin`, when sent, must name the host the request was sent to (403 otherwise). A
+  client that sends neither (curl, a script) is no browser and passes;
 * a request body no larger than the limit (413 before the app reads it);
 * headers that keep browsers from sniffing types or sending the page's address on.
 """
@@ -16,7 +20,9 @@ import json
 from collections.abc import Awaitable, Callable, MutableMapping
 from http.cookies import SimpleCookie
 from typing import Any
-from urllib.parse import parse_qs
+from urllib.parse import parse_qs, urlsplit
+
+from arise.serve.config import is_loopback
 
 Scope = MutableMapping[str, Any]
 Message = MutableMapping[str, Any]
@@ -27,6 +33,9 @@ ASGIApp = Callable[[Scope, Receive, Send], Awaitable[None]]
 COOKIE = "arise_token"
 LOOPBACK_NAMES = frozenset({"127.0.0.1", "localhost", "::1"})
 BODY_METHODS = frozenset({"POST", "PUT", "PATCH"})
+CHANGING_METHODS = frozenset({"POST", "PUT", "PATCH", "DELETE"})
+#: Sec-Fetch-Site values of a request the page itself (or the user, typing) made.
+OWN_SITE = frozenset({"same-origin", "none"})
 COMMON_HEADERS = [
     (b"x-content-type-options", b"nosniff"),
     (b"referrer-policy", b"no-referrer"),
@@ -38,6 +47,25 @@ def host_name(host: str) -> str:
     if host.startswith("["):
         return host[1:].split("]", 1)[0]
     return host.rsplit(":", 1)[0] if host.count(":") == 1 else host
+
+
+def cross_site(headers: dict[str, str]) -> str | None:
+    """Why a state-changing request comes from another site, or None when it does not."""
+    site = headers.get("sec-fetch-site")
+    if site is not None and site.strip().lower() not in OWN_SITE:
+        return f"the browser says it comes from another site (Sec-Fetch-Site: {site[:40]})"
+    origin = headers.get("origin")
+    if origin is None:
+        return None
+    host = headers.get("host", "").strip().lower()
+    try:
+        parts = urlsplit(origin.strip())
+        netloc = parts.netloc.lower()
+    except ValueError:
+        parts, netloc = None, ""
+    if parts is None or parts.scheme not in ("http", "https") or not host or netloc != host:
+        return f"its Origin ({origin[:80]}) is not this server ({host[:80] or 'no Host'})"
+    return None
 
 
 async def _refuse(send: Send, status: int, message: str) -> None:
@@ -54,6 +82,11 @@ async def _refuse(send: Send, status: int, message: str) -> None:
         }
     )
     await send({"type": "http.response.body", "body": body})
+
+
+def _loopback_name(name: str) -> bool:
+    """`localhost`, or a loopback address written as one (127.0.0.1, 127.1.2.3, ::1)."""
+    return name.lower() in LOOPBACK_NAMES or (name != "" and is_loopback(name))
 
 
 class Guard:
@@ -85,9 +118,19 @@ class Guard:
             await self.app(scope, receive, send)
             return
         headers = {k.decode("latin-1").lower(): v.decode("latin-1") for k, v in scope["headers"]}
-        if self.loopback and host_name(headers.get("host", "")) not in LOOPBACK_NAMES:
+        if self.loopback and not _loopback_name(host_name(headers.get("host", ""))):
             await _refuse(send, 421, "this server answers only to 127.0.0.1 or localhost")
             return
+        if scope["method"] in CHANGING_METHODS:
+            reason = cross_site(headers)
+            if reason is not None:
+                await _refuse(
+                    send,
+                    403,
+                    f"cross-site request refused: {reason}; this server takes changes "
+                    "only from its own page",
+                )
+                return
         set_cookie = False
         if self.token is not None:
             given, from_query = self._token_of(scope, headers)

@@ -11,7 +11,11 @@ import threading
 import time
 from dataclasses import dataclass, field
 from enum import StrEnum
-from typing import Any
+from typing import Annotated, Any
+
+from pydantic import BaseModel, ConfigDict, Field
+
+from arise.generate.run import RunStatus
 
 
 class JobState(StrEnum):
@@ -134,16 +138,39 @@ class Job:
         }
 
     @classmethod
-    def from_dict(cls, data: dict[str, Any]) -> Job:
+    def from_dict(cls, data: object) -> Job:
+        """A job read back from a run folder's job.json: untrusted, so validated
+        (ValueError for anything that is not a job record)."""
+        record = JobRecord.model_validate(data)
         return cls(
-            id=str(data["id"]),
-            description=str(data["description"]),
-            provider=str(data["provider"]),
-            model=str(data["model"]),
-            created=float(data.get("created") or 0.0),
-            state=JobState(data.get("state", JobState.FAILED)),
-            started=data.get("started"),
-            finished=data.get("finished"),
-            message=data.get("message"),
-            run_status=data.get("run_status"),
+            id=record.id,
+            description=record.description,
+            provider=record.provider,
+            model=record.model,
+            created=record.created,
+            state=record.state,
+            started=record.started,
+            finished=record.finished,
+            message=record.message,
+            run_status=record.run_status.value if record.run_status else None,
         )
+
+
+Time = Annotated[float, Field(ge=0, allow_inf_nan=False)]
+
+
+class JobRecord(BaseModel):
+    """What job.json may hold: bounded strings, finite times, known states."""
+
+    model_config = ConfigDict(extra="ignore")
+
+    id: str = Field(max_length=64)
+    description: str = Field(max_length=100_000)
+    provider: str = Field(max_length=200)
+    model: str = Field(max_length=200)
+    created: Time = 0.0
+    state: JobState = JobState.FAILED
+    started: Time | None = None
+    finished: Time | None = None
+    message: str | None = Field(default=None, max_length=10_000)
+    run_status: RunStatus | None = None

@@ -1,13 +1,16 @@
 """What the page shows of a finished run, read from its folder (so it works after a
 restart): the script with its sections and, for each line, the attempt that last changed
 it; every attempt with its diagnostic; the spec's grounded facts; the conformity checks;
-the files there are to see or download."""
+the files there are to see or download.
+
+The folder is untrusted input (see `store`): every file is read through `safefs` (no
+links, bounded sizes), the report's numbers are bounded before they drive a loop, and the
+per-line work is linear, so a crafted folder can neither leak a file nor stall the view."""
 
 from __future__ import annotations
 
 import difflib
-import json
-from pathlib import Path
+import math
 from typing import Any
 
 from pydantic import ValidationError
@@ -15,13 +18,22 @@ from pydantic import ValidationError
 from arise.generate.facts import GroundedFact
 from arise.generate.spec import Actor
 from arise.present.source import FAILED_MARKER
-from arise.sections import find_sections, section_of_line
-from arise.serve.store import BUNDLE
+from arise.sections import Section, find_sections
+from arise.serve.safefs import EntryKind, Folder, Refused, parse_json
+from arise.serve.store import bundle_of
 from arise.validate.types import Diagnostic, SandboxReport
 
 REPORT = "report.json"
 SCRIPT = "scenario.scenic"
 VIEWABLE = ("replay.html", "replay.gif", "scene.png")
+ATTEMPTS = "attempts"
+MAX_REPORT_BYTES = 8 * 1024 * 1024
+MAX_SCRIPT_BYTES = 1024 * 1024
+#: Attempts read back for line origins (a run has max_repairs + 1; the default is 11).
+MAX_ATTEMPTS = 64
+#: Beyond this many lines a script gets no sections and no line origins (both grow
+#: faster than the text; a generated script has a few hundred lines).
+MAX_DIFF_LINES = 5000
 
 
 def line_origins(scripts: list[str]) -> list[int]:
@@ -43,50 +55,74 @@ def line_origins(scripts: list[str]) -> list[int]:
     return origins
 
 
-def _attempt_scripts(folder: Path, last: int) -> list[str]:
-    scripts = []
-    for index in range(last + 1):
-        path = folder / "attempts" / f"attempt-{index:02d}.scenic"
-        scripts.append(path.read_text("utf-8") if path.is_file() else "")
-    return scripts
+def _attempt_scripts(folder: Folder, last: int) -> list[str]:
+    try:
+        attempts = folder.folder(ATTEMPTS)
+    except Refused:
+        return []
+    with attempts:
+        return [
+            attempts.read_text(f"attempt-{index:02d}.scenic", MAX_SCRIPT_BYTES) or ""
+            for index in range(last + 1)
+        ]
 
 
-def _final_script(folder: Path) -> str:
-    path = folder / SCRIPT
-    if not path.is_file():
-        return ""
-    text = path.read_text("utf-8")
+def _final_script(folder: Folder) -> str:
+    text = folder.read_text(SCRIPT, MAX_SCRIPT_BYTES) or ""
     if text.startswith(FAILED_MARKER):
         text = text.split("\n", 1)[1] if "\n" in text else ""
     return text
 
 
-def script_view(folder: Path, report: dict[str, Any]) -> dict[str, Any]:
+def line_sections(sections: list[Section], count: int) -> list[str | None]:
+    """The innermost section of each of `count` lines (what `section_of_line` says of
+    each line, in one pass over the sections rather than one per line)."""
+    names: list[str | None] = [None] * count
+    for section in sections:  # outer before inner: an inner section overwrites
+        for number in range(section.first_line, min(section.last_line, count) + 1):
+            names[number - 1] = section.name
+    return names
+
+
+def script_view(folder: Folder, report: dict[str, Any]) -> dict[str, Any]:
     """The final script's lines, each with its section and the attempt that wrote it."""
     script = _final_script(folder)
     final = report.get("final_attempt")
-    attempts = report.get("attempts") or []
-    kinds = {a.get("index"): a.get("kind") for a in attempts if isinstance(a, dict)}
+    kinds = {
+        a.get("index"): a.get("kind")
+        for a in _list(report.get("attempts"))
+        if isinstance(a, dict) and isinstance(a.get("index"), int)
+    }
     origins: list[int] = []
-    if isinstance(final, int) and final >= 0:
+    lines_of_script = script.splitlines()
+    if (
+        isinstance(final, int)
+        and 0 <= final < MAX_ATTEMPTS
+        and len(lines_of_script) <= MAX_DIFF_LINES
+    ):
         scripts = _attempt_scripts(folder, final)
-        if scripts[-1].splitlines() == script.splitlines():
+        if (
+            scripts
+            and scripts[-1].splitlines() == lines_of_script
+            and all(s.count("\n") <= MAX_DIFF_LINES for s in scripts)
+        ):
             origins = line_origins(scripts)
+    found = find_sections(script) if len(lines_of_script) <= MAX_DIFF_LINES else []
+    sections_of = line_sections(found, len(lines_of_script))
     lines = []
-    for number, text in enumerate(script.splitlines(), start=1):
+    for number, text in enumerate(lines_of_script, start=1):
         origin = origins[number - 1] if len(origins) >= number else 0
         lines.append(
             {
                 "number": number,
                 "text": text,
-                "section": section_of_line(script, number),
+                "section": sections_of[number - 1],
                 "attempt": origin,
                 "kind": kinds.get(origin),
             }
         )
     sections = [
-        {"name": s.name, "first_line": s.first_line, "last_line": s.last_line}
-        for s in find_sections(script)
+        {"name": s.name, "first_line": s.first_line, "last_line": s.last_line} for s in found
     ]
     return {"lines": lines, "sections": sections, "failed": report.get("status") != "executed"}
 
@@ -100,9 +136,19 @@ def _diagnostic_line(data: object) -> str | None:
         return str(data.get("message") or "")
 
 
+def _seconds(*values: object) -> float:
+    """The sum of the numbers among `values` (anything else counts as 0)."""
+    total = sum(float(v) for v in values if isinstance(v, int | float) and not isinstance(v, bool))
+    return round(total, 2) if math.isfinite(total) else 0.0
+
+
+def _list(value: object, limit: int = MAX_ATTEMPTS) -> list[Any]:
+    return value[:limit] if isinstance(value, list) else []
+
+
 def attempts_view(report: dict[str, Any]) -> list[dict[str, Any]]:
     found = []
-    for attempt in report.get("attempts") or []:
+    for attempt in _list(report.get("attempts")):
         if not isinstance(attempt, dict):
             continue
         diagnostic = attempt.get("diagnostic")
@@ -118,11 +164,7 @@ def attempts_view(report: dict[str, Any]) -> list[dict[str, Any]]:
                 "hint": diagnostic.get("hint") if isinstance(diagnostic, dict) else None,
                 "contradictions": attempt.get("contradictions") or [],
                 "diff": attempt.get("diff") or "",
-                "seconds": round(
-                    float(attempt.get("check_seconds") or 0)
-                    + float(attempt.get("repair_seconds") or 0),
-                    2,
-                ),
+                "seconds": _seconds(attempt.get("check_seconds"), attempt.get("repair_seconds")),
             }
         )
     return found
@@ -173,17 +215,17 @@ def _sandbox_label(data: object) -> str | None:
         return None
 
 
-def run_view(folder: Path) -> dict[str, Any]:
-    """Everything the page shows of a run; a run that never started has only `files`."""
-    view: dict[str, Any] = {"report": None, "files": [], "viewable": []}
-    view["files"] = [name for name in BUNDLE if (folder / name).is_file()]
-    view["files"] += sorted(p.name for p in folder.glob("*.xodr"))
-    view["viewable"] = [name for name in VIEWABLE if (folder / name).is_file()]
-    path = folder / REPORT
-    if not path.is_file():
+def run_view(folder: Folder) -> dict[str, Any]:
+    """Everything the page shows of a run; a run that never started has only `files`.
+    Entries that are links or special files are neither listed nor read (`skipped`)."""
+    bundle = bundle_of(folder)
+    view: dict[str, Any] = {"report": None, "files": bundle.names, "skipped": bundle.skipped}
+    view["viewable"] = [name for name in VIEWABLE if folder.kind(name) is EntryKind.REGULAR]
+    text = folder.read_text(REPORT, MAX_REPORT_BYTES)
+    if text is None:
         return view
     try:
-        report = json.loads(path.read_text("utf-8"))
+        report = parse_json(text)
     except ValueError:
         return view
     if not isinstance(report, dict):

@@ -239,6 +239,9 @@
       link.rel = "noopener";
       links.appendChild(link);
     });
+    (view.skipped || []).forEach(function (note) {  // links and special files: not served
+      links.appendChild(el("span", "hint", "skipped " + note));
+    });
     var hasReplay = view.viewable.indexOf("replay.html") >= 0;
     var frame = $("replay");
     frame.hidden = !hasReplay;
