@@ -24,6 +24,7 @@ from arise.evaluate.fidelity import (
 from arise.validate.facts import ego_pair_facts, find_collisions
 from arise.validate.types import AgentTrace, CheckResult, LaneChange, SimulationFacts, TracePoint
 from arise.vocabulary import ACTOR_CLASSES, PAPER_CATEGORIES, PROP_CLASSES, Side
+from tests.conftest import REPO
 
 # Scenic's frame: heading 0 faces +y, angles grow counter-clockwise, so the ego at the
 # origin facing +y has its left at -x and its right at +x.
@@ -429,6 +430,13 @@ def test_the_three_dev_sets_load_and_validate() -> None:
     assert classes <= set(LABEL_CLASSES)
     assert {"Car", "Truck", "Motorcycle", "Bicycle", "Pedestrian"} <= classes
     assert set(ACTOR_CLASSES) & classes and set(PROP_CLASSES) & classes
+
+
+def test_the_held_apart_set_loads_and_covers_the_eight_categories() -> None:
+    items = load_devset(REPO / "tests" / "heldapart" / "heldapart.jsonl")
+    assert len(items) == 40 and {item.set for item in items} == {DevSet.HELDAPART}
+    assert set(Counter(item.category for item in items).values()) == {5}
+    assert set(Counter(item.category for item in items)) == set(PAPER_CATEGORIES)
 
 
 def test_the_short_set_covers_the_papers_eight_categories_and_rarely_states_weather() -> None:
