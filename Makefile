@@ -8,7 +8,7 @@ STAMP  := $(VENV)/.installed
 # declared dependencies, which would downgrade attrs (see the verifai extra in pyproject).
 VERIFAI := verifai==2.2.0
 
-.PHONY: demo serve test lint typecheck bench clean setup setup-dev setup-model
+.PHONY: demo serve check test lint typecheck bench clean setup setup-dev setup-model
 
 $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
@@ -44,7 +44,15 @@ demo: setup-model
 serve: setup-model
 	$(BIN)/arise serve
 
-## the whole test suite, with lint and type checks
+## the everyday loop: lint, types, the import contract and the fast tests (about a minute)
+check: setup-dev
+	$(BIN)/ruff check src tests benchmarks
+	$(BIN)/ruff format --check src tests benchmarks
+	$(BIN)/mypy
+	$(BIN)/lint-imports
+	$(BIN)/pytest -q -m "not slow" -n 2
+
+## the whole test suite, with lint and type checks (what CI runs)
 test: setup-dev
 	$(BIN)/ruff check src tests benchmarks
 	$(BIN)/ruff format --check src tests benchmarks
