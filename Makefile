@@ -58,7 +58,7 @@ test: setup-dev
 	$(BIN)/ruff format --check src tests benchmarks
 	$(BIN)/mypy
 	$(BIN)/lint-imports
-	$(BIN)/pytest -q
+	$(BIN)/pytest -q --durations=10
 
 lint: setup-dev
 	$(BIN)/ruff check src tests benchmarks
