@@ -9,10 +9,10 @@ among all trials (an active sampler should keep finding them once it has one), t
 score, and the wall time of one search. `--timing` also times one search on the local
 executor with 1 and 2 workers and on the Ray executor.
 
-The scripts are the dev prompt set's final scripts (docs/eval-dev, commit f83d1cc), copied
-into benchmarks/data/search_dev/. By default only the ones whose dev-run scene was not
-critical are searched (`--all` takes every one): the others are critical at their first
-sample, and a search has nothing to find there.
+The scripts are the dev prompt set's final scripts (benchmarks/data/runs/eval-dev, commit
+f83d1cc), copied into benchmarks/data/search_dev/. By default only the ones whose dev-run
+scene was not critical are searched (`--all` takes every one): the others are critical at
+their first sample, and a search has nothing to find there.
 
 Run:  .venv/bin/python benchmarks/search.py [--trials 30] [--samplers random,halton,ce]
           [--seeds 0,1] [--workers 2] [--out out/bench-search] [--ids so-4,lc-1] [--timing]
@@ -44,7 +44,7 @@ from arise.validate import CheckOptions
 
 REPO = Path(__file__).resolve().parents[1]
 SCRIPTS = REPO / "benchmarks" / "data" / "search_dev"
-DEV_BENCH = REPO / "docs" / "eval-dev" / "bench.sqlite"
+DEV_BENCH = REPO / "benchmarks" / "data" / "runs" / "eval-dev" / "bench.sqlite"
 
 
 def not_critical_at_dev_run() -> set[str]:
