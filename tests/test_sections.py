@@ -12,6 +12,7 @@ from arise.sections import (
     replace_section,
     section_body,
     section_of_line,
+    sections_by_line,
     write_section,
 )
 
@@ -109,3 +110,27 @@ def test_crlf_text_keeps_its_line_endings_outside_the_body() -> None:
     text = "# BEGIN A\r\nold\r\n# END A\r\n"
     assert section_body(text, "A") == "old"
     assert replace_section(text, "A", "new") == "# BEGIN A\r\nnew\n# END A\r\n"
+
+
+def test_sections_by_line_agrees_with_section_of_line() -> None:
+    text = SCRIPT + "# BEGIN A\nx\n# BEGIN B\ny\n# END A\nz\n# END B\n# BEGIN OPEN\nw\n"
+    expected = [section_of_line(text, n) for n in range(1, len(text.splitlines()) + 1)]
+    assert sections_by_line(text) == expected
+    assert sections_by_line("") == []
+
+
+def test_thousands_of_unmatched_markers_are_read_in_one_pass() -> None:
+    # An END scanned every open section before: 10,000 BEGINs and 10,000 ENDs of other
+    # names took 10^8 steps. Per-name stacks make it linear.
+    count = 10_000
+    text = "".join(f"# BEGIN A{i}\n" for i in range(count))
+    text += "".join(f"# END B{i}\n" for i in range(count))
+    text += "# BEGIN C\n" * count + "# END C\n" * count
+    sections = find_sections(text)
+    assert len(sections) == 2 * count
+    assert sum(not s.closed for s in sections) == count
+    inner = max((s for s in sections if s.name == "C"), key=lambda s: s.first_line)
+    assert (inner.first_line, inner.last_line) == (3 * count, 3 * count + 1)
+    names = sections_by_line(text)
+    assert names[0] == "A0" and names[count - 1] == f"A{count - 1}"
+    assert names[3 * count - 1] == "C" and names[-1] == "C"

@@ -19,11 +19,9 @@ from pathlib import Path
 from typing import Any
 
 import typer
-from rich.console import Console
-from rich.markup import escape
 from typer.core import TyperGroup
 
-from arise import __version__
+from arise import __version__, terminal
 from arise.doctor import DOCTOR_HELP, doctor_command
 from arise.errors import AriseError
 from arise.evaluate.cli import BENCH_HELP, REPORT_HELP, bench_command, report_command
@@ -42,7 +40,7 @@ from arise.validate.cli import CHECK_HELP, blueprints_command, check_command, ma
 #: Exit code of a crash (a bug in arise), as BSD's EX_SOFTWARE.
 CRASH_EXIT = 70
 
-errors = Console(stderr=True, soft_wrap=True)
+errors = terminal.console(stderr=True)
 
 
 def write_crash_report(error: BaseException) -> Path:
@@ -69,7 +67,7 @@ class AriseGroup(TyperGroup):
         except (typer.Exit, typer.Abort, typer.TyperException):  # usage errors, exits
             raise
         except AriseError as error:
-            errors.print(f"[red]error:[/red] {escape(str(error))}", highlight=False)
+            errors.print(terminal.text(("error:", "red"), " ", str(error)))
             ctx.exit(error.exit_code)
         except BrokenPipeError:  # `arise ... | head` closed our output: not a crash
             _silence_stdout()
@@ -80,10 +78,12 @@ class AriseGroup(TyperGroup):
             except OSError:
                 raise error from None
             errors.print(
-                f"[red]arise crashed[/red] (a bug in arise): {escape(type(error).__name__)}"
-                f": {escape(str(error))}\nThe details are in {escape(str(report))};"
-                " please attach that file to a bug report.",
-                highlight=False,
+                terminal.text(
+                    ("arise crashed", "red"),
+                    f" (a bug in arise): {type(error).__name__}: ",
+                    str(error),
+                    f"\nThe details are in {report}; please attach that file to a bug report.",
+                )
             )
             ctx.exit(CRASH_EXIT)
 
@@ -125,4 +125,7 @@ app.add_typer(kb_app, name="kb")
 def main() -> None:
     # Scenic complains when another library already owns sys.excepthook; harmless here.
     warnings.filterwarnings("ignore", message="unable to install sys.excepthook")
+    from arise.validate.pool import close_on_signals
+
+    close_on_signals()  # SIGTERM/SIGINT: workers killed at once, pools closed, no traceback
     app()

@@ -19,6 +19,7 @@ The format, read tolerantly and written strictly:
 
 from __future__ import annotations
 
+import heapq
 import re
 from dataclasses import dataclass
 from enum import StrEnum
@@ -72,21 +73,24 @@ def write_section(name: str, body: list[str]) -> list[str]:
 def find_sections(text: str) -> list[Section]:
     """All marked sections in order of their BEGIN line (an outer one before its inner)."""
     lines = text.splitlines()
-    open_sections: list[tuple[str, int]] = []
+    # The BEGIN lines still open, per name: an END pops the innermost of its own name in
+    # constant time, so a script of thousands of unmatched markers stays linear.
+    open_sections: dict[str, list[int]] = {}
     found: list[Section] = []
     for number, line in enumerate(lines, start=1):
         marker = parse_marker(line)
         if marker is None:
             continue
+        starts = open_sections.setdefault(marker.name, [])
         if marker.kind is MarkerKind.BEGIN:
-            open_sections.append((marker.name, number))
-            continue
-        for index in range(len(open_sections) - 1, -1, -1):
-            if open_sections[index][0] == marker.name:
-                _, start = open_sections.pop(index)
-                found.append(Section(marker.name, start, number))
-                break
-    found.extend(Section(name, start, len(lines), closed=False) for name, start in open_sections)
+            starts.append(number)
+        elif starts:
+            found.append(Section(marker.name, starts.pop(), number))
+    found.extend(
+        Section(name, start, len(lines), closed=False)
+        for name, starts in open_sections.items()
+        for start in starts
+    )
     return sorted(found, key=lambda s: (s.first_line, -s.last_line))
 
 
@@ -99,6 +103,25 @@ def section_of_line(text: str, line: int | None) -> str | None:
         if section.contains(line) and (best is None or section.first_line >= best.first_line):
             best = section
     return best.name if best else None
+
+
+def sections_by_line(text: str) -> list[str | None]:
+    """The innermost section of every line (index 0 is line 1), as `section_of_line` names
+    it, in one sweep: asking `section_of_line` line by line would be quadratic."""
+    line_count = len(text.splitlines())
+    sections = find_sections(text)  # by first line
+    names: list[str | None] = []
+    started: list[tuple[int, int, str]] = []  # (-first_line, last_line, name): a max-heap
+    following = 0
+    for line in range(1, line_count + 1):
+        while following < len(sections) and sections[following].first_line <= line:
+            section = sections[following]
+            heapq.heappush(started, (-section.first_line, section.last_line, section.name))
+            following += 1
+        while started and started[0][1] < line:
+            heapq.heappop(started)  # ended: it contains no later line either
+        names.append(started[0][2] if started else None)
+    return names
 
 
 def find_section(text: str, name: str) -> Section | None:

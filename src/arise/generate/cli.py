@@ -7,11 +7,10 @@ from pathlib import Path
 from typing import Annotated, Any
 
 import typer
-from rich.console import Console
 from rich.live import Live
-from rich.markup import escape
 from rich.text import Text
 
+from arise import terminal
 from arise.generate.events import AttemptChecked, ProgressEvent, StageStarted
 from arise.generate.extract import check_description
 from arise.generate.options import GenerateOptions, Mode
@@ -27,8 +26,8 @@ from arise.llm.cli_options import (
 from arise.llm.prefix_store import default_store_dir
 from arise.validate.types import Simulator, confinement_summary
 
-console = Console(soft_wrap=True)
-errors = Console(stderr=True, soft_wrap=True)
+console = terminal.console()
+errors = terminal.console(stderr=True)
 
 GENERATE_HELP = """Turn traffic-scenario descriptions into executable Scenic 3 scripts.
 
@@ -125,7 +124,7 @@ def generate_command(
     single = len(descriptions) == 1 and count == 1
     refusal = check_description(descriptions[0][1]) if single and not as_json else None
     if refusal:  # said before the model, the KB or a validator worker is loaded
-        errors.print(f"[red]error:[/red] {refusal}")
+        errors.print(terminal.text(("error:", "red"), " ", refusal))
         raise typer.Exit(2)
     options = GenerateOptions(
         mode=mode,
@@ -154,15 +153,18 @@ def generate_command(
                 run = _run_with_progress(generator, text, folder, quiet=as_json)
                 runs.append(run)
                 if not as_json:
-                    mark = "[green]✔[/green]" if run.ok else "[red]✘[/red]"
-                    console.print(f"{mark} {folder}: {run.summary()}")
+                    mark = ("✔", "green") if run.ok else ("✘", "red")
+                    console.print(
+                        terminal.text(mark, " ", terminal.name(folder), ": ", run.summary())
+                    )
                     if run.usage.prefixes_built:
                         console.print(
-                            f"  prefix store: first run, kept the model's state after "
-                            f"{run.usage.prefixes_built} fixed prompt prefix(es) in "
-                            f"{default_store_dir()}; later runs load it instead of reading "
-                            "them again",
-                            highlight=False,
+                            terminal.text(
+                                "  prefix store: first run, kept the model's state after "
+                                f"{run.usage.prefixes_built} fixed prompt prefix(es) in "
+                                f"{default_store_dir()}; later runs load it instead of "
+                                "reading them again"
+                            )
                         )
                     labels = [
                         a.check.sandbox.label if a.check and a.check.sandbox else None
@@ -170,10 +172,10 @@ def generate_command(
                         if a.check is not None
                     ]
                     if labels:
-                        console.print("  sandbox: " + confinement_summary(labels))
+                        console.print(terminal.text("  sandbox: ", confinement_summary(labels)))
                     _print_grounding(run)
                     for note in run.contradictions:
-                        console.print(f"  [yellow]contradiction:[/yellow] {note}")
+                        console.print(terminal.text("  ", ("contradiction:", "yellow"), " ", note))
                     _print_gate(run)
     if as_json:
         payload = [run.report() for run in runs]
@@ -182,7 +184,7 @@ def generate_command(
         done = sum(run.ok for run in runs)
         console.print(f"\n{done} of {len(runs)} runs produced an executable script")
     if single and runs[0].status is RunStatus.REFUSED:
-        errors.print(f"[red]error:[/red] {runs[0].message}")
+        errors.print(terminal.text(("error:", "red"), " ", runs[0].message))
         raise typer.Exit(2)
     raise typer.Exit(0 if all(run.ok for run in runs) else 1)
 
@@ -194,15 +196,15 @@ def _print_grounding(run: Generation) -> None:
         return
     console.print("  read from the description:")
     for fact in run.spec.grounding:
-        console.print(f"    {escape(fact.describe())}", highlight=False)
+        console.print(terminal.text("    ", fact.describe()))
     for actor in run.spec.actors:
-        console.print(f"    {escape(actor.describe())}", highlight=False)
+        console.print(terminal.text("    ", actor.describe()))
     for note in run.hint_notes:
-        console.print(f"    [dim]{escape(note)}[/dim]", highlight=False)
+        console.print(terminal.text("    ", (note, "dim")))
     if run.ignored_text:
         console.print("  left out (not part of the scenario):")
         for text in run.ignored_text:
-            console.print(f"    [dim]{escape(text)}[/dim]", highlight=False)
+            console.print(terminal.text("    ", (text, "dim")))
 
 
 def _print_gate(run: Generation) -> None:
@@ -217,8 +219,13 @@ def _print_gate(run: Generation) -> None:
         return
     sections = ", ".join(dict.fromkeys(c.section for c in run.contradictions_left))
     console.print(
-        f"  [yellow]semantic gate:[/yellow] not met within the repair budget; "
-        f"section(s) to change: {sections}{cost}"
+        terminal.text(
+            "  ",
+            ("semantic gate:", "yellow"),
+            " not met within the repair budget; section(s) to change: ",
+            sections,
+            cost,
+        )
     )
 
 
@@ -228,11 +235,12 @@ def _run_with_progress(generator: Generator, text: str, folder: Path, quiet: boo
     state: dict[str, Any] = {"stage": "starting", "attempt": 0, "error": ""}
 
     def render() -> Text:
-        line = Text(f"{folder}: {state['stage']}")
+        line = terminal.text(terminal.name(folder), ": ", state["stage"])
         if state["attempt"]:
             line.append(f" (attempt {state['attempt']})")
         if state["error"]:
-            line.append(f"  last error: {state['error'][:90]}", style="yellow")
+            error = terminal.shown(state["error"], 90, one_line=True)
+            line.append_text(terminal.text(("  last error: " + error, "yellow")))
         return line
 
     with Live(render(), console=console, transient=True, refresh_per_second=4) as live:

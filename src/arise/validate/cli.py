@@ -10,17 +10,17 @@ from pathlib import Path
 from typing import Annotated, Any
 
 import typer
-from rich.console import Console
 from rich.panel import Panel
 from rich.table import Table
 
+from arise import terminal
 from arise.maps.registry import MapError, MapRegistry
 from arise.validate.api import check
 from arise.validate.pool import WorkerPool
-from arise.validate.types import CheckOptions, CheckResult, SandboxReport, Simulator
+from arise.validate.types import CheckOptions, CheckResult, Diagnostic, SandboxReport, Simulator
 
-console = Console(soft_wrap=True)
-errors = Console(stderr=True, soft_wrap=True)
+console = terminal.console()
+errors = terminal.console(stderr=True)
 
 STAGE_WORDS = {
     "gate": "static gate",
@@ -61,58 +61,62 @@ def _png_target(png: str | None, script: Path, many: bool) -> str | None:
     return png
 
 
-def _print_result(result: CheckResult) -> None:
-    ok = result.ok
-    title = f"[bold]{result.script}[/bold]"
-    console.print(
-        ("[green]✔[/green] " if ok else "[red]✘[/red] ") + title + "  " + result.summary()
+def _diagnostic_panel(d: Diagnostic) -> Panel:
+    """The diagnostic in a red box; every word of it came from the worker (untrusted)."""
+    body = terminal.text((d.error_type, "bold"), ": ", d.message)
+    where = []
+    if d.line:
+        where.append(f"line {d.line}" + (f", column {d.column}" if d.column else ""))
+    if d.section:
+        where.append(f"section {terminal.name(d.section)}")
+    if where:
+        body.append("\nat " + ", ".join(where))
+    if d.excerpt:
+        body.append_text(terminal.text("\n\n", d.excerpt))
+    for rejection in d.rejections[:5]:
+        body.append_text(terminal.text(f"\nrejected {rejection.count}x: ", rejection.reason))
+    if d.hint:
+        body.append_text(terminal.text("\n\n", ("hint:", "cyan"), " ", d.hint))
+    return Panel(
+        body,
+        title=terminal.text(f"failed in stage '{d.stage.value}'"),
+        border_style="red",
+        expand=False,
     )
+
+
+def _print_result(result: CheckResult) -> None:
+    mark = ("✔ ", "green") if result.ok else ("✘ ", "red")
+    script = terminal.name(result.script)
+    console.print(terminal.text(mark, (script, "bold"), "  ", result.summary()))
     if result.map is not None:
         note = (
             f" (substitute for {result.map.requested})"
             if result.map.substituted and result.map.requested
             else ""
         )
-        console.print(f"  map: {result.map.name}{note}")
+        console.print(terminal.text("  map: ", f"{result.map.name}{note}"))
     print_sandbox(result.sandbox)
     for rejection in result.simulation_rejections:
         console.print(
-            f"  [yellow]note:[/yellow] {rejection.count} simulation(s) rejected "
-            f"before this one: {rejection.reason}"
-        )
-    for warning in result.warnings:
-        console.print(f"  [yellow]note:[/yellow] {warning}")
-    if result.diagnostic is not None:
-        d = result.diagnostic
-        body = [f"[bold]{d.error_type}[/bold]: {d.message}"]
-        where = []
-        if d.line:
-            where.append(f"line {d.line}" + (f", column {d.column}" if d.column else ""))
-        if d.section:
-            where.append(f"section {d.section}")
-        if where:
-            body.append("at " + ", ".join(where))
-        if d.excerpt:
-            body.append("\n" + d.excerpt)
-        for rejection in d.rejections[:5]:
-            body.append(f"rejected {rejection.count}x: {rejection.reason}")
-        if d.hint:
-            body.append(f"\n[cyan]hint:[/cyan] {d.hint}")
-        console.print(
-            Panel(
-                "\n".join(body),
-                title=f"failed in stage '{d.stage.value}'",
-                border_style="red",
-                expand=False,
+            terminal.text(
+                "  ",
+                ("note:", "yellow"),
+                f" {rejection.count} simulation(s) rejected before this one: ",
+                rejection.reason,
             )
         )
+    for warning in result.warnings:
+        console.print(terminal.text("  ", ("note:", "yellow"), " ", warning))
+    if result.diagnostic is not None:
+        console.print(_diagnostic_panel(result.diagnostic))
     if result.simulation is not None and result.simulation.ego_pairs:
         table = Table(title="ego vs. others", show_edge=False)
         for column in ("agent", "min distance (m)", "at step", "min TTC (s)", "collision"):
             table.add_column(column)
         for pair in result.simulation.ego_pairs:
             table.add_row(
-                pair.other,
+                terminal.text(terminal.name(pair.other)),
                 f"{pair.min_distance:.2f}",
                 str(pair.min_distance_step),
                 "-" if pair.min_ttc is None else f"{pair.min_ttc:.2f}",
@@ -120,21 +124,29 @@ def _print_result(result: CheckResult) -> None:
             )
         console.print(table)
     if result.timings:
-        console.print("  timings: " + ", ".join(f"{k} {v:.2f}s" for k, v in result.timings.items()))
+        console.print(
+            terminal.text(
+                "  timings: ", ", ".join(f"{k} {v:.2f}s" for k, v in result.timings.items())
+            )
+        )
     if result.png:
-        console.print(f"  picture: {result.png}")
+        console.print(terminal.text("  picture: ", result.png))
 
 
 def print_sandbox(sandbox: SandboxReport | None, indent: str = "  ") -> None:
     """One line saying which confinement a script ran under; loud when incomplete."""
     if sandbox is None:
-        console.print(f"{indent}sandbox: [yellow]none (the script never reached a worker)[/yellow]")
+        console.print(
+            terminal.text(
+                f"{indent}sandbox: ", ("none (the script never reached a worker)", "yellow")
+            )
+        )
     elif sandbox.full:
-        console.print(f"{indent}sandbox: {sandbox.label}")
+        console.print(terminal.text(f"{indent}sandbox: ", sandbox.label))
     else:
-        console.print(f"{indent}[bold red]sandbox: {sandbox.label}[/bold red]")
+        console.print(terminal.text(indent, (f"sandbox: {sandbox.label}", "bold red")))
         for note in sandbox.notes:
-            console.print(f"{indent}  [red]{note}[/red]")
+            console.print(terminal.text(f"{indent}  ", (note, "red")))
 
 
 def check_command(
@@ -178,7 +190,7 @@ def check_command(
     try:
         registry = MapRegistry(map_dir)
     except MapError as error:
-        errors.print(f"[red]error:[/red] {error}")
+        errors.print(terminal.text(("error:", "red"), " ", str(error)))
         raise typer.Exit(2) from None
     options = CheckOptions(
         simulator=simulator,
@@ -212,10 +224,12 @@ def check_command(
                 if as_json or not console.is_terminal:
                     result = run_one(script)
                 else:
-                    with console.status(f"{script}: starting") as status:
+                    shown = terminal.markup_name(script)
+                    with console.status(f"{shown}: starting") as status:
 
-                        def show(stage: str, status: Any = status, script: Path = script) -> None:
-                            status.update(f"{script}: {STAGE_WORDS.get(stage, stage)}…")
+                        def show(stage: str, status: Any = status, shown: str = shown) -> None:
+                            words = STAGE_WORDS.get(stage) or terminal.markup_name(stage)
+                            status.update(f"{shown}: {words}…")
 
                         result = run_one(script, show)
                 results.append(result)
@@ -243,7 +257,7 @@ def maps_list(
     try:
         registry = MapRegistry(map_dir)
     except MapError as error:
-        errors.print(f"[red]error:[/red] {error}")
+        errors.print(terminal.text(("error:", "red"), " ", str(error)))
         raise typer.Exit(2) from None
     table = Table(title="maps")
     for column in ("name", "source", "features", "file"):
@@ -251,10 +265,10 @@ def maps_list(
     for name in registry.names():
         entry = registry.entries[name]
         table.add_row(
-            name,
-            entry.source,
-            ", ".join(sorted(entry.features)) or "?",
-            os.path.relpath(entry.path) if entry.path else "-",
+            terminal.text(terminal.name(name)),
+            terminal.text(terminal.name(entry.source)),
+            terminal.text(", ".join(sorted(entry.features)) or "?"),
+            terminal.text(terminal.name(os.path.relpath(entry.path))) if entry.path else "-",
         )
     console.print(table)
 
@@ -277,8 +291,12 @@ def blueprints_command(
     )
     if category is not None and category not in categories:
         errors.print(
-            f"[red]error:[/red] unknown category {category!r}; choose from {', '.join(categories)}"
+            terminal.text(
+                ("error:", "red"),
+                f" unknown category {category!r}; choose from {', '.join(categories)}",
+            )
         )
         raise typer.Exit(2)
     for name in [category] if category else categories:
-        console.print(f"[bold]{name}[/bold]: " + ", ".join(getattr(table, f"{name}Models")))
+        models = ", ".join(getattr(table, f"{name}Models"))
+        console.print(terminal.text((name, "bold"), ": ", models))

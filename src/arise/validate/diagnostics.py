@@ -247,17 +247,46 @@ def _first_line_containing(text: str, needle: str) -> int | None:
     return None
 
 
-_INTERSECTS = re.compile(r"(?:unnamed )?(\w+) intersects (?:unnamed )?(\w+)")
+_WORD = re.compile(r"\w+")
+_INTERSECTS = " intersects "
+_UNNAMED = "unnamed "
+
+
+def _word_before(text: str, end: int) -> str:
+    start = end
+    while start > 0 and (text[start - 1].isalnum() or text[start - 1] == "_"):
+        start -= 1
+    return text[start:end]
+
+
+def _word_after(text: str, start: int) -> str:
+    if text.startswith(_UNNAMED, start) and (word := _WORD.match(text, start + len(_UNNAMED))):
+        return word.group()
+    word = _WORD.match(text, start)
+    return word.group() if word else ""
+
+
+def _overlapping_objects(reason: str) -> tuple[str, str] | None:
+    """The two objects of Scenic's "[unnamed] A intersects [unnamed] B", found with string
+    scans: a regular expression for it backtracks quadratically on a long word."""
+    position = 0
+    while (at := reason.find(_INTERSECTS, position)) >= 0:
+        left, right = _word_before(reason, at), _word_after(reason, at + len(_INTERSECTS))
+        if left and right:
+            return left, right
+        position = at + 1
+    return None
 
 
 def _creation_line(text: str, reason: str) -> int | None:
     """For an overlap rejection, the line creating the later of the two objects."""
-    match = _INTERSECTS.search(reason)
-    if not match:
+    objects = _overlapping_objects(reason)
+    if objects is None:
         return None
+    created = re.compile(rf"\bnew\s+({objects[0]}|{objects[1]})\b")
     found = None
     for number, line in enumerate(text.splitlines(), start=1):
-        if re.search(rf"\bnew\s+({match.group(1)}|{match.group(2)})\b", line):
+        if created.search(line):
             found = number
     return found
 

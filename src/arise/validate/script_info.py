@@ -2,6 +2,10 @@
 
 Read from the text, never by executing it: the validator overrides the model and the map,
 which would hide both.
+
+The text is untrusted and can be as large as the validator accepts, so it is read one line
+at a time with string methods, in time linear in its length: the only regular expressions
+are anchored single runs (`\\w+`, a dotted name), which cannot backtrack.
 """
 
 from __future__ import annotations
@@ -17,11 +21,9 @@ KNOWN_MODELS = {
     "scenic.simulators.metadrive.model": "MetaDrive",
 }
 
-_MODEL = re.compile(r"^\s*model\s+([A-Za-z_][\w.]*)\s*$", re.M)
-_PARAM = re.compile(r"^\s*param\s+(\w+)\s*=\s*(.+?)\s*$", re.M)
-_STRING_ASSIGN = re.compile(r"""^\s*(\w+)\s*=\s*f?['"]([^'"]+)['"]\s*$""", re.M)
-_STRING = re.compile(r"""f?['"]([^'"]*)['"]""")
-_PLACEHOLDER = re.compile(r"\{(\w+)\}")
+_WORD = re.compile(r"\w+")
+_DOTTED_NAME = re.compile(r"[A-Za-z_][\w.]*")
+_QUOTES = "'\""
 
 
 @dataclass(frozen=True)
@@ -36,8 +38,75 @@ class ScriptInfo:
     param_lines: dict[str, int]
 
 
-def _line_of(text: str, position: int) -> int:
-    return text.count("\n", 0, position) + 1
+def _after_keyword(stripped: str, keyword: str) -> str | None:
+    """What follows `keyword` and at least one space at the start of a line, else None."""
+    if not stripped.startswith(keyword):
+        return None
+    rest = stripped[len(keyword) :]
+    return rest.lstrip() if rest[:1].isspace() else None
+
+
+def _assignment(stripped: str) -> tuple[str, str] | None:
+    """`name = value` (both stripped; `value` may be empty), or None for any other line."""
+    name = _WORD.match(stripped)
+    if name is None:
+        return None
+    rest = stripped[name.end() :].lstrip()
+    if not rest.startswith("="):
+        return None
+    return name.group(), rest[1:].strip()
+
+
+def _model_of(stripped: str) -> str | None:
+    """The world model a `model a.b.c` line names."""
+    rest = _after_keyword(stripped, "model")
+    return rest if rest and _DOTTED_NAME.fullmatch(rest) else None
+
+
+def _param_of(stripped: str) -> tuple[str, str] | None:
+    """Name and expression of a `param name = expression` line."""
+    rest = _after_keyword(stripped, "param")
+    found = _assignment(rest) if rest else None
+    return found if found and found[1] else None
+
+
+def _string_assignment_of(stripped: str) -> tuple[str, str] | None:
+    """Name and text of `name = 'text'` (or an f-string): one literal, no quotes inside."""
+    found = _assignment(stripped)
+    if found is None:
+        return None
+    name, value = found
+    value = value.removeprefix("f")
+    if len(value) < 3 or value[0] not in _QUOTES or value[-1] not in _QUOTES:
+        return None
+    body = value[1:-1]
+    return None if "'" in body or '"' in body else (name, body)
+
+
+def _is_ego_assignment(stripped: str) -> bool:
+    rest = stripped.removeprefix("ego")
+    return rest != stripped and rest.lstrip().startswith("=")
+
+
+def _first_quote(text: str, start: int = 0) -> int:
+    found = [i for i in (text.find("'", start), text.find('"', start)) if i >= 0]
+    return min(found) if found else -1
+
+
+def _fill_placeholders(value: str, strings: dict[str, str]) -> str:
+    """`{name}` replaced by the string `name` was assigned; unknown fields stay as written."""
+    out: list[str] = []
+    position = 0
+    while (brace := value.find("{", position)) >= 0:
+        name = _WORD.match(value, brace + 1)
+        if name is not None and value.startswith("}", name.end()):
+            out += [value[position:brace], strings.get(name.group(), value[brace : name.end() + 1])]
+            position = name.end() + 1
+        else:
+            out.append(value[position : brace + 1])
+            position = brace + 1
+    out.append(value[position:])
+    return "".join(out)
 
 
 def _resolve_string(expression: str, strings: dict[str, str]) -> str | None:
@@ -45,41 +114,59 @@ def _resolve_string(expression: str, strings: dict[str, str]) -> str | None:
     expression = expression.strip()
     if expression in strings:
         return strings[expression]
-    literal = _STRING.search(expression)
-    if not literal:
+    opening = _first_quote(expression)
+    closing = _first_quote(expression, opening + 1) if opening >= 0 else -1
+    if closing < 0:
         return None
-    value = _PLACEHOLDER.sub(lambda m: strings.get(m.group(1), m.group(0)), literal.group(1))
+    value = _fill_placeholders(expression[opening + 1 : closing], strings)
     return None if "{" in value else value
 
 
-def read_script_info(text: str) -> ScriptInfo:
-    model_match = _MODEL.search(text)
-    params = {m.group(1): m for m in _PARAM.finditer(text)}
-    strings = {m.group(1): m.group(2) for m in _STRING_ASSIGN.finditer(text)}
-    map_match = params.get("map")
-    carla_map = params.get("carla_map")
+def _is_town(value: str) -> bool:
+    """`Town` followed by a digit and word characters, e.g. Town05 or Town10HD_Opt."""
+    rest = value.removeprefix("Town")
+    return rest != value and rest[:1].isdecimal() and rest.replace("_", "a").isalnum()
 
+
+def read_script_info(text: str) -> ScriptInfo:
+    model: tuple[str, int] | None = None
+    ego_line: int | None = None
+    params: dict[str, tuple[str, int]] = {}  # the last statement of a name wins
+    strings: dict[str, str] = {}
+    for number, line in enumerate(text.split("\n"), start=1):
+        stripped = line.strip()
+        if not stripped or stripped.startswith("#"):
+            continue
+        if model is None and (name := _model_of(stripped)) is not None:
+            model = (name, number)
+        if (param := _param_of(stripped)) is not None:
+            params[param[0]] = (param[1], number)
+        if (assigned := _string_assignment_of(stripped)) is not None:
+            strings[assigned[0]] = assigned[1]
+        if ego_line is None and _is_ego_assignment(stripped):
+            ego_line = number
+
+    map_param = params.get("map")
+    carla_map = params.get("carla_map")
     requested: str | None = None
     requested_file: str | None = None
-    if map_match:
-        value = _resolve_string(map_match.group(2), strings)
+    if map_param:
+        value = _resolve_string(map_param[0], strings)
         if value and value.endswith(".xodr"):
             requested_file = value
             requested = value.replace("\\", "/").rsplit("/", 1)[-1].removesuffix(".xodr")
     if requested is None and carla_map:
-        requested = _resolve_string(carla_map.group(2), strings)
+        requested = _resolve_string(carla_map[0], strings)
     if requested is None:
-        towns = [v for v in strings.values() if re.fullmatch(r"Town\d+\w*", v)]
-        requested = towns[0] if towns else None
+        requested = next((v for v in strings.values() if _is_town(v)), None)
 
-    ego = re.search(r"^\s*ego\s*=", text, re.M)
     return ScriptInfo(
-        model=model_match.group(1) if model_match else None,
-        model_line=_line_of(text, model_match.start(1)) if model_match else None,
-        map_line=_line_of(text, map_match.start(1)) if map_match else None,
-        map_expression=map_match.group(2) if map_match else None,
+        model=model[0] if model else None,
+        model_line=model[1] if model else None,
+        map_line=map_param[1] if map_param else None,
+        map_expression=map_param[0] if map_param else None,
         requested_map=requested,
         requested_map_file=requested_file,
-        ego_line=_line_of(text, ego.start()) if ego else None,
-        param_lines={name: _line_of(text, m.start(1)) for name, m in params.items()},
+        ego_line=ego_line,
+        param_lines={name: line for name, (_, line) in params.items()},
     )
