@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import os
+import signal
 import subprocess
 import sys
 import tempfile
@@ -10,6 +11,7 @@ from pathlib import Path
 
 import pytest
 
+from arise.validate.lineage import ParentMark, own_mark
 from arise.validate.process_limit import (
     MAX_TASKS,
     TaskLimit,
@@ -76,3 +78,36 @@ def test_scratch_folders_of_dead_parents_are_swept() -> None:
         assert not leftover.exists() and mine.exists()
     finally:
         mine.rmdir()
+
+
+def _dead_mark() -> ParentMark:
+    """The mark of a parent that is gone (a pid reused since is another start time)."""
+    gone = subprocess.Popen([sys.executable, "-c", "pass"])
+    gone.wait()
+    return ParentMark(gone.pid, 1)
+
+
+def test_a_dead_parents_cgroup_is_emptied_then_removed(sleeper: subprocess.Popen[bytes]) -> None:
+    limit = limit_tasks(sleeper.pid, _dead_mark())
+    if limit is None:
+        pytest.skip("no writable pids cgroup here")
+    try:
+        cleanup_stale()
+        assert sleeper.wait(10) == -signal.SIGKILL, "the leftover in it was killed"
+        assert not limit.folder.exists()
+    finally:
+        limit.release()
+
+
+def test_a_live_parents_cgroup_is_left_alone(sleeper: subprocess.Popen[bytes]) -> None:
+    limit = limit_tasks(sleeper.pid)
+    if limit is None:
+        pytest.skip("no writable pids cgroup here")
+    try:
+        assert str(own_mark()) in limit.folder.name
+        cleanup_stale()
+        assert limit.folder.exists() and sleeper.poll() is None
+    finally:
+        limit.release()
+    assert sleeper.wait(10) == -signal.SIGKILL, "release kills what is left in the cgroup"
+    assert not limit.folder.exists()

@@ -6,10 +6,17 @@ script (`arise.validate.sandbox`); its first message says which confinement is a
 and the pool stamps that report on every result. A check that outlives its wall-clock
 limit, fills its scratch folder or floods the pipe gets the whole group killed, and the
 worker is replaced. Workers are recycled after a number of checks to keep memory flat.
+
+Workers die with their parent, however it ends: each one watches it (a pidfd and its
+request pipe) and kills its own process group when it goes, and each script's child has a
+parent-death signal. SIGTERM, SIGHUP and SIGINT in the command line kill every worker at
+once and unwind (`close_on_signals`). What a killed parent still leaves (a worker that
+was importing Scenic, a scratch folder, a cgroup) the next pool kills and removes.
 """
 
 from __future__ import annotations
 
+import atexit
 import contextlib
 import json
 import os
@@ -24,20 +31,26 @@ import threading
 import time
 from collections.abc import Callable
 from pathlib import Path
+from types import FrameType
 from typing import Any
-
-import psutil
 
 from arise.errors import AriseError
 from arise.paths import cache_dir
-from arise.validate.process_limit import MAX_TASKS, cleanup_stale, count_tasks, limit_tasks
+from arise.validate.lineage import ParentMark, kill_orphaned_workers, own_mark, worker_command
+from arise.validate.process_limit import (
+    MAX_TASKS,
+    TaskLimit,
+    cleanup_stale,
+    count_tasks,
+    limit_tasks,
+)
 from arise.validate.types import Diagnostic, SandboxReport, Stage
 
 READY_TIMEOUT = 120.0  # seconds for a cold worker to import Scenic on a busy machine
 KILL_GRACE = 3.0  # seconds after the time limit before the process group is killed
 SCRATCH_QUOTA_BYTES = 256 * 1024 * 1024  # a script that writes more is stopped
 MESSAGE_LIMIT_BYTES = 64 * 1024 * 1024  # one protocol line; a longer one is a flood
-SCRATCH_PREFIX = "arise-worker-"  # then the parent's pid, so leftovers can be swept
+SCRATCH_PREFIX = "arise-worker-"  # then the parent's mark (`lineage`): leftovers are swept
 # Variables a worker inherits; everything else (API keys above all) stays behind.
 _PASSED_ENV = (
     "PATH",
@@ -69,8 +82,19 @@ class WorkerStartError(AriseError):
     """A worker could not start, or could not be confined as required."""
 
 
+class PoolStopped(AriseError):
+    """The run is being stopped (SIGTERM, SIGINT): no check starts, none gets a verdict."""
+
+    def __init__(self) -> None:
+        super().__init__("stopped: the run was interrupted")
+
+
 def _worker_env(
-    scratch: Path, memory_mb: int, connect_ports: tuple[int, ...], confine: bool
+    scratch: Path,
+    memory_mb: int,
+    connect_ports: tuple[int, ...],
+    confine: bool,
+    die_with_parent: bool,
 ) -> dict[str, str]:
     env = {key: os.environ[key] for key in _PASSED_ENV if key in os.environ}
     env.update(
@@ -82,6 +106,10 @@ def _worker_env(
         ARISE_WORKER_SCRATCH_BYTES=str(SCRATCH_QUOTA_BYTES),
         ARISE_WORKER_CONNECT_PORTS=",".join(str(p) for p in connect_ports),
         ARISE_WORKER_CONFINE="1" if confine else "0",
+        # The kernel's parent-death signal fires when the THREAD that started the worker
+        # ends, so only the main thread asks for it; the worker's own watch of its parent
+        # holds either way.
+        ARISE_WORKER_PDEATHSIG="1" if die_with_parent else "0",
         MPLCONFIGDIR=str(cache_dir() / "matplotlib"),
         MPLBACKEND="Agg",
         PYGAME_HIDE_SUPPORT_PROMPT="hide",
@@ -93,12 +121,15 @@ def _worker_env(
     return env
 
 
-def sweep_scratch() -> None:
-    """Remove scratch folders whose parent process is gone (it was killed before it could)."""
+def sweep_scratch() -> list[int]:
+    """Kill workers whose parent is gone (it was killed before it could), then remove
+    scratch folders whose parent is gone; returns the pids killed."""
+    killed = kill_orphaned_workers()
     for folder in Path(tempfile.gettempdir()).glob(f"{SCRATCH_PREFIX}*-*"):
-        owner = folder.name.removeprefix(SCRATCH_PREFIX).split("-", 1)[0]
-        if owner.isdigit() and not psutil.pid_exists(int(owner)):
+        owner = ParentMark.parse(folder.name.removeprefix(SCRATCH_PREFIX).split("-", 1)[0])
+        if owner is not None and not owner.alive():
             shutil.rmtree(folder, ignore_errors=True)
+    return killed
 
 
 def _folder_bytes(folder: Path) -> int:
@@ -119,6 +150,12 @@ def _kill_group(process: subprocess.Popen[bytes]) -> None:
             process.kill()
 
 
+# This process's workers by pid: what a signal or exit kills. A process forked from this
+# one inherits the dict (and the signal handlers), but not the workers: it skips them.
+_live: dict[int, Worker] = {}
+_stopping = False  # a terminating signal came: no check starts, none gets a verdict
+
+
 class Worker:
     """One confined child process running `arise.validate.worker`."""
 
@@ -131,22 +168,30 @@ class Worker:
         on_spawn: Callable[[subprocess.Popen[bytes]], None] | None = None,
     ):
         self.connect_ports = connect_ports
-        self.scratch = Path(tempfile.mkdtemp(prefix=f"{SCRATCH_PREFIX}{os.getpid()}-"))
+        self.task_limit: TaskLimit | None = None
+        self.owner = os.getpid()
+        parent = own_mark()
+        self.scratch = Path(tempfile.mkdtemp(prefix=f"{SCRATCH_PREFIX}{parent}-"))
+        on_main_thread = threading.current_thread() is threading.main_thread()
         self.process = subprocess.Popen(
-            [sys.executable, "-m", "arise.validate.worker"],
+            worker_command(sys.executable, parent),
             stdin=subprocess.PIPE,
             stdout=subprocess.PIPE,
             stderr=subprocess.DEVNULL,
-            start_new_session=True,
+            start_new_session=True,  # its own process group, which it kills if we die
             cwd=self.scratch,
-            env=_worker_env(self.scratch, memory_mb, connect_ports, confine),
+            env=_worker_env(self.scratch, memory_mb, connect_ports, confine, on_main_thread),
         )
+        _live[self.process.pid] = self
+        if _stopping:  # a signal came while it was being started
+            self.kill()
+            raise PoolStopped()
         if nice:
             with contextlib.suppress(OSError):  # a lower priority is only a courtesy
                 os.setpriority(os.PRIO_PROCESS, self.process.pid, nice)
         if on_spawn is not None:
             on_spawn(self.process)  # lets the pool kill a start it no longer needs
-        self.task_limit = limit_tasks(self.process.pid) if confine else None
+        self.task_limit = limit_tasks(self.process.pid, parent) if confine else None
         self.checks_done = 0
         self._buffer = bytearray()
         try:
@@ -329,15 +374,63 @@ class Worker:
         )
 
     def kill(self) -> None:
+        """Kill the worker, its script's child and anything left in its cgroup; remove
+        its scratch folder and cgroup."""
         _kill_group(self.process)
         self.process.wait()
         for stream in (self.process.stdin, self.process.stdout):
             if stream is not None:
                 with contextlib.suppress(OSError):
                     stream.close()
-        shutil.rmtree(self.scratch, ignore_errors=True)
         if self.task_limit is not None:
             self.task_limit.release()
+        shutil.rmtree(self.scratch, ignore_errors=True)
+        _live.pop(self.process.pid, None)
+
+
+def _own_workers() -> list[Worker]:
+    me = os.getpid()
+    return [worker for worker in list(_live.values()) if worker.owner == me]
+
+
+def _kill_all_now() -> None:
+    """SIGKILL every worker of this process, without waiting or locking (a signal
+    handler may run while any lock is held)."""
+    for worker in _own_workers():
+        _kill_group(worker.process)
+
+
+def _on_terminate(signum: int, frame: FrameType | None) -> None:
+    global _stopping
+    again = _stopping
+    _stopping = True
+    _kill_all_now()
+    if again:  # a second signal while unwinding: leave now (the next run sweeps)
+        os._exit(128 + signum)
+    if signum == signal.SIGINT:
+        raise KeyboardInterrupt
+    raise SystemExit(128 + signum)
+
+
+def close_on_signals() -> None:
+    """Make SIGTERM, SIGHUP and SIGINT stop this process cleanly: every worker is killed
+    at once (not when its check times out), checks in flight end without a verdict
+    (`PoolStopped`), and the stack unwinds as for Ctrl-C, so pools close and remove
+    scratch folders and cgroups; the exit status is 128 + the signal (SIGINT stays a
+    KeyboardInterrupt). Signals set to be ignored (nohup) stay ignored. Main thread only."""
+    if threading.current_thread() is not threading.main_thread():
+        return
+    for signum in (signal.SIGTERM, signal.SIGHUP, signal.SIGINT):
+        if signal.getsignal(signum) in (signal.SIG_DFL, signal.default_int_handler):
+            signal.signal(signum, _on_terminate)
+
+
+@atexit.register
+def _kill_all_at_exit() -> None:
+    """Workers no pool closed (an exception, a signal): killed, their scratch folders and
+    cgroups removed, before the interpreter goes."""
+    for worker in _own_workers():
+        worker.kill()
 
 
 class WorkerPool:
@@ -361,7 +454,9 @@ class WorkerPool:
         self.recycle_after = recycle_after
         self.require_sandbox = require_sandbox
         self.confine = confine
-        cleanup_stale()  # task-limit cgroups and scratch folders a killed parent left
+        # What a killed parent left: cgroups (with anything still in them), workers that
+        # outlived it, scratch folders.
+        cleanup_stale()
         sweep_scratch()
         self._idle: queue.LifoQueue[Worker] = queue.LifoQueue()
         self._started = 0
@@ -380,6 +475,8 @@ class WorkerPool:
 
     def _take(self, connect_ports: tuple[int, ...], nice: int = 0) -> Worker:
         """An idle worker confined for these ports, or a new one."""
+        if _stopping:
+            raise PoolStopped()
         warming = self._warming
         if warming is not None and warming is not threading.current_thread():
             warming.join()  # its worker, or (if its start failed) the right to start one
@@ -424,6 +521,7 @@ class WorkerPool:
             and worker.alive
             and worker.checks_done < self.recycle_after
             and not self._closed
+            and not _stopping
         ):
             self._idle.put(worker)
             return
@@ -485,6 +583,8 @@ class WorkerPool:
             result = worker.run(request, timeout, on_stage)
         except WorkerDied as death:
             self._give_back(worker, healthy=False)
+            if _stopping:  # we killed it: that says nothing about the script
+                raise PoolStopped() from None
             death.sandbox = worker.sandbox
             raise
         except BaseException:

@@ -63,6 +63,7 @@ _SCOPE_ABSTRACT_UNIX_SOCKET = 1 << 0  # ABI 6
 _SCOPE_SIGNAL = 1 << 1
 
 _PR_SET_NO_NEW_PRIVS = 38
+_PR_SET_PDEATHSIG = 1
 
 # unshare(2) and mount(2) flags (include/uapi/linux/sched.h, mount.h)
 _CLONE_NEWNS = 0x00020000
@@ -481,14 +482,19 @@ def _refuse_new_processes(rules: object) -> None:
 
 def isolate_child() -> None:
     """For the child a fork server starts for each script: stack a seccomp filter that
-    refuses new processes (threads still work), and enter a nested Landlock domain whose
-    scopes keep its signals and abstract sockets from reaching the server. Both only add
-    restrictions: neither can be undone."""
+    refuses new processes (threads still work) and leaving the server's process group or
+    dropping the parent-death signal (so it dies with its server), and enter a nested
+    Landlock domain whose scopes keep its signals and abstract sockets from reaching the
+    server. Both only add restrictions: neither can be undone."""
     import pyseccomp as sc
 
     rules = sc.SyscallFilter(sc.ALLOW)
     rules.set_attr(sc.Attr.CTL_TSYNC, 1)
     _refuse_new_processes(rules)
+    refuse = sc.ERRNO(errno.EPERM)
+    for name in ("setsid", "setpgid"):
+        rules.add_rule(refuse, name)
+    rules.add_rule(refuse, "prctl", sc.Arg(0, sc.EQ, _PR_SET_PDEATHSIG))
     rules.load()
     abi = landlock_abi()
     if abi >= 6:

@@ -21,6 +21,7 @@ import json
 import os
 import random
 import re
+import select
 import shutil
 import signal
 import sys
@@ -42,6 +43,7 @@ from arise.validate.diagnostics import (
 )
 from arise.validate.gate import Refusal, scan_tokens, scan_tree
 from arise.validate.lanes import LaneReading, find_weaving, read_lanes
+from arise.validate.lineage import ParentMark, recorded_parent
 from arise.validate.script_info import CARLA_MODEL, KNOWN_MODELS, ScriptInfo, read_script_info
 from arise.validate.types import (
     AgentTrace,
@@ -717,16 +719,20 @@ def _child(request: dict[str, Any], write_fd: int, scratch: Path, closing: list[
     emit({"event": "result", "result": payload})
 
 
-def _serve_one(request: dict[str, Any], emit: Emit, scratch: Path, protocol_fd: int) -> None:
+def _serve_one(request: dict[str, Any], emit: Emit, scratch: Path, private_fds: list[int]) -> None:
+    """Run one check in a fresh child; `private_fds` (requests, results, the parent's
+    pidfd) are closed in it."""
     read_fd, write_fd = os.pipe()
+    server = os.getpid()
     # Move everything the server holds out of the collector's reach, so the child's
     # collections do not write to (and so copy) every inherited page: ~0.2 s per check.
     gc.freeze()
     pid = os.fork()
     if pid == 0:
         try:
+            _die_with(server)  # before isolate_child: the script may not undo it
             os.close(read_fd)
-            _child(request, write_fd, scratch, [0, protocol_fd])
+            _child(request, write_fd, scratch, private_fds)
         finally:
             os._exit(0)
     os.close(write_fd)
@@ -741,7 +747,80 @@ def _serve_one(request: dict[str, Any], emit: Emit, scratch: Path, protocol_fd: 
         )
 
 
+# --- dying with the parent --------------------------------------------------------------------
+_PR_SET_PDEATHSIG = 1  # prctl(2), include/uapi/linux/prctl.h
+_LIBC: Any = None
+
+
+def _libc() -> Any:
+    """The C library, loaded while the server may still open files (children reuse it)."""
+    global _LIBC
+    if _LIBC is None:
+        import ctypes
+
+        _LIBC = ctypes.CDLL(None, use_errno=True)
+    return _LIBC
+
+
+def _die_with(parent_pid: int) -> None:
+    """SIGKILL this process when the thread that started it ends (prctl PDEATHSIG); exit
+    now if the parent is already gone (we were reparented before the call)."""
+    _libc().prctl(_PR_SET_PDEATHSIG, signal.SIGKILL, 0, 0, 0)
+    if os.getppid() != parent_pid:
+        os._exit(1)
+
+
+@dataclass
+class _Parent:
+    """The process that started this worker (`--parent`), and a pidfd to watch it by."""
+
+    mark: ParentMark
+    pidfd: int | None
+    death_signal: bool  # the parent started us from its main thread: PDEATHSIG is exact
+
+
+def _hold_on_to_parent() -> _Parent | None:
+    """First thing, still unconfined: whose worker this is, a pidfd of that process, and
+    the kernel's parent-death signal when the parent asked for it. A worker started by
+    hand records no parent and watches none."""
+    _libc()
+    mark = recorded_parent(sys.argv[1:])
+    if mark is None:
+        return None
+    parent = _Parent(mark, None, os.environ.get("ARISE_WORKER_PDEATHSIG") == "1")
+    with contextlib.suppress(OSError, AttributeError):  # pidfd_open: Linux >= 5.3
+        parent.pidfd = os.pidfd_open(mark.pid)
+    if parent.death_signal:
+        _die_with(mark.pid)
+    elif os.getppid() != mark.pid:  # gone before the pidfd was opened: not ours to watch
+        os._exit(1)
+    return parent
+
+
+def _watch_parent(parent: _Parent) -> None:
+    """Kill this worker's process group (the script's child with it) the moment the
+    parent is gone: its pidfd turns readable when it exits, and the request pipe hangs
+    up when its last writer closes. A thread started once confined, so Landlock covers
+    it too; it needs only poll and kill."""
+    poller = select.poll()
+    poller.register(0, 0)  # no events asked: only a hang-up or an error, nothing is read
+    if parent.pidfd is not None:
+        poller.register(parent.pidfd, select.POLLIN)
+    gone = select.POLLHUP | select.POLLERR | select.POLLNVAL
+
+    def watch() -> None:
+        while not any(fd == parent.pidfd or flags & gone for fd, flags in poller.poll()):
+            pass
+        if os.getpgrp() == os.getpid():  # the pool starts us as a session leader
+            with contextlib.suppress(OSError):
+                os.killpg(0, signal.SIGKILL)
+        os._exit(1)  # a child left behind gets its parent-death signal
+
+    threading.Thread(target=watch, name="arise-parent-watch", daemon=True).start()
+
+
 def main() -> None:
+    parent = _hold_on_to_parent()
     protocol = os.fdopen(os.dup(1), "w", buffering=1, encoding="utf-8")
     sink = os.open(os.devnull, os.O_WRONLY)
     os.dup2(sink, 1)
@@ -757,17 +836,24 @@ def main() -> None:
         os.environ.get("ARISE_WORKER_SCRATCH") or tempfile.mkdtemp(prefix="arise-worker-")
     )
     namespace_problem = _enter_namespaces(scratch)
+    if parent is not None and parent.death_signal:
+        _die_with(parent.mark.pid)  # again: a changed identity would clear it
     os.chdir(scratch)  # the tmpfs now mounted there, not the folder beneath it
     _warm_up()
     _prime()
     sandbox = _confine(scratch, namespace_problem)
+    private = [0, protocol.fileno()]
+    if parent is not None:
+        _watch_parent(parent)
+        if parent.pidfd is not None:
+            private.append(parent.pidfd)
     emit({"event": "ready", "pid": os.getpid(), "sandbox": sandbox.model_dump(mode="json")})
     for line in sys.stdin:
         if not line.strip():
             continue
         request = json.loads(line)
         _preload_map(request)
-        _serve_one(request, emit, scratch, protocol.fileno())
+        _serve_one(request, emit, scratch, private)
 
 
 if __name__ == "__main__":
