@@ -8,7 +8,7 @@ STAMP  := $(VENV)/.installed
 # declared dependencies, which would downgrade attrs (see the verifai extra in pyproject).
 VERIFAI := verifai==2.2.0
 
-.PHONY: demo serve check test lint typecheck bench clean setup setup-dev setup-model
+.PHONY: demo serve check test lint typecheck bench cli-docs clean setup setup-dev setup-model
 
 $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
@@ -63,6 +63,10 @@ test: setup-dev
 lint: setup-dev
 	$(BIN)/ruff check src tests benchmarks
 	$(BIN)/ruff format --check src tests benchmarks
+
+## docs/cli.md, generated from the CLI's own help (tests/test_cli_reference.py checks it)
+cli-docs: setup-dev
+	$(BIN)/python -m arise.cli_reference docs/cli.md
 
 bench: setup-dev
 	$(BIN)/python benchmarks/validate.py
