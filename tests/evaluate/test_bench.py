@@ -20,10 +20,11 @@ import pytest
 from typer.testing import CliRunner
 
 from arise.cli import app
-from arise.evaluate.prompt_file import read_prompts
-from arise.evaluate.runner import BenchConfig, run_bench
-from arise.evaluate.store import BenchStore
-from arise.generate.options import GenerateOptions
+from arise.evaluate.prompt_file import BenchPrompt, read_prompts
+from arise.evaluate.runner import BenchConfig, pending, run_bench
+from arise.evaluate.store import BenchStore, BenchStoreError
+from arise.generate.options import GenerateOptions, Mode
+from arise.generate.run import AttemptKind
 from tests.generate_cases import CASES
 
 runner = CliRunner()
@@ -192,3 +193,64 @@ def test_judge_pass_scores_finished_runs_later(tmp_path: Path) -> None:
     }
     assert record.scs == pytest.approx(sum(c["score"] for c in record.judge["criteria"]) / 70)
     assert "| SCS | arise | 0 |" in (out / "report" / "report.md").read_text()
+
+
+def _old_row(db: sqlite3.Connection, prompt_id: str, mode: str) -> None:
+    """A run as an older arise wrote it: the mode is plain text in the column and the JSON."""
+    task = {
+        "prompt_id": prompt_id,
+        "category": "crossing",
+        "description": "A pedestrian crosses.",
+        "mode": mode,
+        "temperature": 0.0,
+        "run_index": 0,
+    }
+    record = {
+        "task": task,
+        "status": "executed",
+        "first_pass_ok": False,
+        "repairs": 1,
+        "attempts": [{"index": 0, "kind": "initial", "ok": False}],
+    }
+    db.execute(
+        "INSERT INTO runs (prompt_id, category, description, mode, temperature, run_index, "
+        "status, first_pass_ok, repairs, llm_calls, prompt_tokens, completion_tokens, seconds, "
+        "record, finished_at) VALUES (?, 'crossing', 'd', ?, 0.0, 0, 'executed', 0, 1, 0, 0, "
+        "0, 1.0, ?, '2024-01-01T00:00:00+00:00')",
+        (prompt_id, mode, json.dumps(record)),
+    )
+    db.execute(
+        "INSERT INTO attempts VALUES (last_insert_rowid(), 0, 'initial', 0, NULL, NULL, NULL, "
+        "NULL, 0.5, 0, 0)"
+    )
+
+
+def test_an_older_store_reads_back_as_enums_and_resumes(tmp_path: Path) -> None:
+    path = tmp_path / "bench.sqlite"
+    BenchStore(path).close()  # the schema, as every version writes it
+    with sqlite3.connect(path) as db:
+        _old_row(db, "cross", "single-pass")
+    with BenchStore(path) as store:
+        [run] = store.runs()
+        [attempt] = store.attempts()
+        assert run.task.mode is Mode.SINGLE_PASS and attempt.kind is AttemptKind.INITIAL
+        assert store.done_keys() == {("cross", Mode.SINGLE_PASS, 0.0, 0)}
+        prompt = BenchPrompt("cross", "A pedestrian crosses.", "crossing")
+        config = BenchConfig([prompt], modes=[Mode.SINGLE_PASS, Mode.ARISE])
+        assert [task.mode for task in pending(config, store)] == [Mode.ARISE]
+        store.save(run)  # written again: the same words as before, not "Mode.SINGLE_PASS"
+    with sqlite3.connect(path) as db:
+        [(column, text)] = db.execute("SELECT mode, record FROM runs")
+    assert column == "single-pass" and json.loads(text)["task"]["mode"] == "single-pass"
+
+
+def test_a_store_row_this_version_cannot_read_is_one_line(tmp_path: Path) -> None:
+    path = tmp_path / "bench.sqlite"
+    BenchStore(path).close()
+    with sqlite3.connect(path) as db:
+        _old_row(db, "cross", "fast")  # no such mode
+    with BenchStore(path) as store, pytest.raises(BenchStoreError, match="'fast'"):
+        store.runs()
+    report = runner.invoke(app, ["report", str(path)])
+    assert report.exit_code == 2 and "a row of runs is not one this arise reads" in report.output
+    assert "Traceback" not in report.output

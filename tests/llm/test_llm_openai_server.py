@@ -14,7 +14,7 @@ from pydantic import BaseModel, field_validator
 from arise.llm import StructuredOutputFailed, get_provider
 from arise.llm.openai_compat import OpenAICompatProvider
 from arise.llm.retry import RetryPolicy
-from arise.llm.types import Capabilities, ProviderError, Request, user
+from arise.llm.types import Capabilities, ProviderError, ProviderErrorKind, Request, user
 
 pytestmark = pytest.mark.slow
 
@@ -102,7 +102,7 @@ def test_openai_json_schema_style_is_refused_by_this_server(llama_server: str) -
     )
     with pytest.raises(ProviderError) as info:
         backend.send(request)
-    assert info.value.status == 500 and info.value.kind == "server_error"
+    assert info.value.status == 500 and info.value.kind is ProviderErrorKind.SERVER_ERROR
     backend.close()
 
 

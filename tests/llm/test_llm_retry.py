@@ -23,7 +23,14 @@ from arise.llm.retry import (
     is_retryable,
     kind_for_status,
 )
-from arise.llm.types import Capabilities, ProviderError, ProviderUnavailable, Request, user
+from arise.llm.types import (
+    Capabilities,
+    ProviderError,
+    ProviderErrorKind,
+    ProviderUnavailable,
+    Request,
+    user,
+)
 
 
 def chat_body(text: str) -> dict[str, Any]:
@@ -121,18 +128,41 @@ def retrying(
     return RetryingProvider(inner, RetryPolicy(attempts=attempts, base=0.05, cap=1.0), sleep=sleep)
 
 
+K = ProviderErrorKind
+
+
 def test_the_table() -> None:
-    retryable = {name for name, row in ERROR_TABLE.items() if row.retryable}
-    assert retryable == {"rate_limited", "overloaded", "server_error", "timeout", "connection"}
-    assert kind_for_status(429) == "rate_limited"
-    assert kind_for_status(500) == "server_error" and kind_for_status(502) == "server_error"
-    assert kind_for_status(503) == "overloaded" and kind_for_status(529) == "overloaded"
-    assert kind_for_status(401) == "auth" and kind_for_status(403) == "auth"
-    assert kind_for_status(404) == "not_found"
-    assert kind_for_status(400) == "bad_request" and kind_for_status(422) == "bad_request"
-    assert is_retryable(ProviderError("x", kind="rate_limited"))
-    assert not is_retryable(ProviderError("x", kind="auth"))
+    assert set(ERROR_TABLE) == set(K)  # every kind has a row, so none is silently not retried
+    retryable = {kind for kind, row in ERROR_TABLE.items() if row.retryable}
+    assert retryable == {K.RATE_LIMITED, K.OVERLOADED, K.SERVER_ERROR, K.TIMEOUT, K.CONNECTION}
+    assert kind_for_status(429) is K.RATE_LIMITED
+    assert kind_for_status(500) is K.SERVER_ERROR and kind_for_status(502) is K.SERVER_ERROR
+    assert kind_for_status(503) is K.OVERLOADED and kind_for_status(529) is K.OVERLOADED
+    assert kind_for_status(401) is K.AUTH and kind_for_status(403) is K.AUTH
+    assert kind_for_status(404) is K.NOT_FOUND
+    assert kind_for_status(400) is K.BAD_REQUEST and kind_for_status(422) is K.BAD_REQUEST
+    assert kind_for_status(None) is K.OTHER
+    assert is_retryable(ProviderError("x", kind=K.RATE_LIMITED))
+    assert not is_retryable(ProviderError("x", kind=K.AUTH))
     assert not is_retryable(ValueError("a bug is not retried"))
+
+
+def test_kind_words_are_stable() -> None:
+    """The values are the words docs/llm.md's table and any stored text use."""
+    assert [k.value for k in K] == [
+        "rate_limited",
+        "overloaded",
+        "server_error",
+        "timeout",
+        "connection",
+        "auth",
+        "not_found",
+        "bad_request",
+        "other",
+    ]
+    assert f"{K.NOT_FOUND}" == "not_found" and ProviderErrorKind("auth") is K.AUTH
+    with pytest.raises(ValueError):
+        ProviderError("x", kind="unauthorised")  # type: ignore[arg-type]
 
 
 def test_backoff_grows_and_honours_retry_after() -> None:
@@ -164,7 +194,7 @@ def test_auth_error_is_not_retried_and_names_the_key(sleeps: list[float]) -> Non
         with pytest.raises(ProviderError) as info:
             llm.send(REQUEST)
         assert server.hits == 1
-    assert info.value.kind == "auth" and info.value.status == 401
+    assert info.value.kind is K.AUTH and info.value.status == 401
     assert "SCRIPTED_API_KEY" in str(info.value)
     assert sleeps == []
 
@@ -175,7 +205,7 @@ def test_server_errors_stop_after_the_bound(sleeps: list[float]) -> None:
         with pytest.raises(ProviderError) as info:
             llm.send(REQUEST)
         assert server.hits == 3
-    assert info.value.kind == "server_error"
+    assert info.value.kind is K.SERVER_ERROR
     assert len(sleeps) == 2
 
 

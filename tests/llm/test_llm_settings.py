@@ -10,7 +10,7 @@ from pathlib import Path
 import pytest
 
 from arise.llm import MissingCredentials, get_provider
-from arise.llm.settings import PRESETS, load_settings, with_overrides
+from arise.llm.settings import PRESETS, ProviderKind, load_settings, with_overrides
 from arise.llm.types import LLMError
 
 
@@ -46,7 +46,7 @@ def test_default_is_the_embedded_model() -> None:
     settings = load_settings()
     assert settings.config_path is None
     assert settings.provider == "local"
-    assert settings.profile().kind == "local"
+    assert settings.profile().kind is ProviderKind.LOCAL
 
 
 def test_file_then_env_then_arguments(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
@@ -72,6 +72,7 @@ threads = 1
     settings = load_settings()
     assert settings.provider == "gpu" and settings.max_reasks == 3
     assert settings.profile().model == "from-file"
+    assert settings.profile().kind is ProviderKind.OPENAI  # parsed once, here
     assert settings.profile("local").threads == 1
 
     monkeypatch.setenv("ARISE_MODEL", "from-env")
@@ -210,6 +211,11 @@ def test_structured_style_and_kind_are_checked(
     write_config(tmp_path, '[providers.local]\nkind = "cloud"\n', monkeypatch)
     with pytest.raises(LLMError, match="kind must be one of"):
         load_settings()
+    write_config(tmp_path, '[providers.box]\nkind = "Local"\n', monkeypatch)  # a new profile
+    with pytest.raises(LLMError, match=r"\[providers.box\]: kind must be one of .*not 'Local'"):
+        load_settings()
+    write_config(tmp_path, '[providers.box]\nkind = "local"\n', monkeypatch)
+    assert load_settings().profile("box").kind is ProviderKind.LOCAL
 
 
 def test_threads_auto(monkeypatch: pytest.MonkeyPatch) -> None:

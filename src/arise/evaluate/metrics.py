@@ -16,6 +16,7 @@ from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass
 
 from arise.evaluate.records import RunRecord
+from arise.generate.options import Mode
 
 
 def esr_single(runs: Sequence[RunRecord]) -> float | None:
@@ -123,7 +124,7 @@ METRICS: dict[str, Metric] = {
 class Group:
     """Runs of one method setting: a mode at a temperature (rows of the paper's table)."""
 
-    mode: str
+    mode: Mode
     temperature: float
 
     def label(self) -> str:

@@ -9,6 +9,7 @@ from __future__ import annotations
 from dataclasses import asdict, dataclass, field
 from typing import Any
 
+from arise.generate.options import Mode
 from arise.generate.run import AttemptKind, RunStatus
 
 MESSAGE_CHARS = 500  # a diagnostic's message is cut to this in the attempts table
@@ -21,13 +22,16 @@ class BenchTask:
     prompt_id: str
     category: str
     description: str
-    mode: str
+    mode: Mode
     temperature: float
     run_index: int
     truth: str | None = None  # canonical JSON of the prompt's hand-written truth
 
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "mode", Mode(self.mode))  # also when read as text
+
     @property
-    def key(self) -> tuple[str, str, float, int]:
+    def key(self) -> tuple[str, Mode, float, int]:
         return (self.prompt_id, self.mode, round(self.temperature, 4), self.run_index)
 
     def label(self) -> str:

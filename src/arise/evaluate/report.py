@@ -12,6 +12,7 @@ from pathlib import Path
 
 from arise.evaluate.metrics import METRICS, Group, Metric, by_category, categories, groups
 from arise.evaluate.records import RunRecord
+from arise.generate.options import Mode
 from arise.generate.outputs import write_atomic
 from arise.validate.types import confinement_summary
 from arise.vocabulary import PAPER_CATEGORIES
@@ -91,7 +92,7 @@ def cells(runs: Sequence[RunRecord], metrics: Sequence[str]) -> list[Cell]:
     found = []
     for metric in metrics:
         for group, members in groups(runs).items():
-            if metric == "RCR" and group.mode != "arise":
+            if metric == "RCR" and group.mode is not Mode.ARISE:
                 continue  # no repair loop, no RCR (the paper leaves the row out)
             values, average = by_category(members, REPORT_METRICS[metric], names)
             found.append(Cell(metric, group, values, average))

@@ -58,7 +58,7 @@ def plan(config: BenchConfig) -> list[BenchTask]:
             prompt_id=p.id,
             category=p.category,
             description=p.description,
-            mode=mode.value,
+            mode=mode,
             temperature=temperature,
             run_index=run,
             truth=p.truth,
@@ -79,7 +79,7 @@ def task_options(base: GenerateOptions, task: BenchTask) -> GenerateOptions:
     seed = None if base.seed is None else base.seed + task.run_index
     return base.model_copy(
         update={
-            "mode": Mode(task.mode),
+            "mode": task.mode,
             "temperature": task.temperature,
             "run_index": task.run_index,
             "seed": seed,

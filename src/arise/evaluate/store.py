@@ -9,12 +9,15 @@ from __future__ import annotations
 
 import json
 import sqlite3
+from collections.abc import Iterator
+from contextlib import contextmanager
 from datetime import UTC, datetime
 from pathlib import Path
 from typing import Any
 
 from arise.errors import AriseError
 from arise.evaluate.records import AttemptRecord, RunRecord
+from arise.generate.options import Mode
 from arise.generate.run import AttemptKind
 
 SCHEMA = """
@@ -90,9 +93,10 @@ class BenchStore:
             )
 
     # -- runs ----------------------------------------------------------------------------------
-    def done_keys(self) -> set[tuple[str, str, float, int]]:
+    def done_keys(self) -> set[tuple[str, Mode, float, int]]:
         rows = self._db.execute("SELECT prompt_id, mode, temperature, run_index FROM runs")
-        return {(p, m, round(t, 4), r) for p, m, t, r in rows}
+        with self._reading("runs"):
+            return {(p, Mode(m), round(t, 4), r) for p, m, t, r in rows}
 
     def save(self, record: RunRecord) -> None:
         task, crit = record.task, record.criticality or {}
@@ -159,14 +163,27 @@ class BenchStore:
 
     def runs(self) -> list[RunRecord]:
         rows = self._db.execute("SELECT record FROM runs ORDER BY id")
-        return [RunRecord.from_dict(json.loads(text)) for (text,) in rows]
+        with self._reading("runs"):
+            return [RunRecord.from_dict(json.loads(text)) for (text,) in rows]
 
     def attempts(self) -> list[AttemptRecord]:
         rows = self._db.execute(
             "SELECT idx, kind, ok, stage, error_type, message, section, check_seconds, "
             "llm_calls, tokens FROM attempts ORDER BY run_id, idx"
         )
-        return [
-            AttemptRecord(i, AttemptKind(k), bool(o), s, e, m, sec, c, n, t)
-            for i, k, o, s, e, m, sec, c, n, t in rows
-        ]
+        with self._reading("attempts"):
+            return [
+                AttemptRecord(i, AttemptKind(k), bool(o), s, e, m, sec, c, n, t)
+                for i, k, o, s, e, m, sec, c, n, t in rows
+            ]
+
+    @contextmanager
+    def _reading(self, table: str) -> Iterator[None]:
+        """A row this version cannot read (an unknown mode, kind or status; a broken record)
+        is one line naming the database, not a traceback."""
+        try:
+            yield
+        except (ValueError, KeyError, TypeError) as error:
+            raise BenchStoreError(
+                f"{self.path}: a row of {table} is not one this arise reads ({error})"
+            ) from error

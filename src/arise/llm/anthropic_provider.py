@@ -16,6 +16,7 @@ from arise.llm.types import (
     Capabilities,
     Completion,
     ProviderError,
+    ProviderErrorKind,
     ProviderUnavailable,
     Request,
     Usage,
@@ -80,16 +81,16 @@ class AnthropicProvider(BaseProvider):
             reply = self._client.messages.create(**self._arguments(request))
         except anthropic.APITimeoutError as exc:
             raise ProviderError(
-                f"{self.name}: no answer within the timeout", kind="timeout"
+                f"{self.name}: no answer within the timeout", kind=ProviderErrorKind.TIMEOUT
             ) from exc
         except anthropic.APIConnectionError as exc:
             raise ProviderError(
                 f"{self.name}: cannot reach the Anthropic API; check the network or ARISE_BASE_URL",
-                kind="connection",
+                kind=ProviderErrorKind.CONNECTION,
             ) from exc
         except anthropic.APIStatusError as exc:
             kind = kind_for_status(exc.status_code)
-            hint = f"; check {self.key_env}" if kind == "auth" else ""
+            hint = f"; check {self.key_env}" if kind is ProviderErrorKind.AUTH else ""
             retry_after = exc.response.headers.get("retry-after") if exc.response else None
             raise ProviderError(
                 f"{self.name}: HTTP {exc.status_code}: {' '.join(str(exc.message).split())[:200]}{hint}",

@@ -35,6 +35,7 @@ from arise.llm.types import (
     ModelNotInstalled,
     PrefixUse,
     ProviderError,
+    ProviderErrorKind,
     ProviderUnavailable,
     Request,
     Usage,
@@ -273,7 +274,7 @@ class LocalProvider(BaseProvider):
                 if "context window" in str(exc):
                     raise ProviderError(
                         f"local: {exc}; shorten the prompt or raise ARISE_LLM_CTX",
-                        kind="bad_request",
+                        kind=ProviderErrorKind.BAD_REQUEST,
                     ) from exc
                 raise
             latency = time.perf_counter() - started

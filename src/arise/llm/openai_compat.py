@@ -13,7 +13,14 @@ from typing import Any
 from arise.llm.base import BaseProvider
 from arise.llm.retry import kind_for_status
 from arise.llm.structured import response_format
-from arise.llm.types import Capabilities, Completion, ProviderError, Request, Usage
+from arise.llm.types import (
+    Capabilities,
+    Completion,
+    ProviderError,
+    ProviderErrorKind,
+    Request,
+    Usage,
+)
 
 
 def _retry_after(headers: Any) -> float | None:
@@ -79,19 +86,21 @@ class OpenAICompatProvider(BaseProvider):
             raise ProviderError(
                 f"{self.name}: no answer from {self.base_url} within the timeout "
                 f"(raise ARISE_LLM_TIMEOUT or use a smaller model)",
-                kind="timeout",
+                kind=ProviderErrorKind.TIMEOUT,
             ) from exc
         except openai.APIConnectionError as exc:
             raise ProviderError(
                 f"{self.name}: cannot reach {self.base_url}; start the server or set "
                 f"ARISE_BASE_URL to where it listens",
-                kind="connection",
+                kind=ProviderErrorKind.CONNECTION,
             ) from exc
         except openai.APIStatusError as exc:
             raise self._status_error(exc) from exc
         latency = time.perf_counter() - started
         if not reply.choices:
-            raise ProviderError(f"{self.name}: the server returned no choices", kind="other")
+            raise ProviderError(
+                f"{self.name}: the server returned no choices", kind=ProviderErrorKind.OTHER
+            )
         choice = reply.choices[0]
         usage = reply.usage
         return Completion(
@@ -112,10 +121,10 @@ class OpenAICompatProvider(BaseProvider):
         status = getattr(exc, "status_code", None)
         kind = kind_for_status(status)
         detail = " ".join(str(getattr(exc, "message", exc)).split())[:200]
-        if kind == "auth":
+        if kind is ProviderErrorKind.AUTH:
             hint = f"check {self.key_env}" if self.key_env else "check the API key"
             text = f"{self.name}: the server refused the key (HTTP {status}); {hint}"
-        elif kind == "not_found":
+        elif kind is ProviderErrorKind.NOT_FOUND:
             text = (
                 f"{self.name}: HTTP 404 from {self.base_url} for model {self.model!r}; "
                 f"check ARISE_BASE_URL and ARISE_MODEL ({detail})"

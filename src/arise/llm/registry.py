@@ -16,14 +16,20 @@ from arise.llm.base import BaseProvider
 from arise.llm.cache import CachedProvider, ResponseCache
 from arise.llm.cassette import RecordingProvider, ReplayProvider
 from arise.llm.retry import RetryingProvider, RetryPolicy
-from arise.llm.settings import ProviderSettings, Settings, load_settings, with_overrides
+from arise.llm.settings import (
+    ProviderKind,
+    ProviderSettings,
+    Settings,
+    load_settings,
+    with_overrides,
+)
 from arise.llm.types import LLMError
 
 
 def build_backend(profile: ProviderSettings, run_index: int = 0) -> BaseProvider:
     """The bare backend for one profile (no cache, no retries)."""
     caps = profile.capabilities()
-    if profile.kind == "local":
+    if profile.kind is ProviderKind.LOCAL:
         from arise.llm.local import LocalProvider
 
         return LocalProvider(
@@ -37,7 +43,7 @@ def build_backend(profile: ProviderSettings, run_index: int = 0) -> BaseProvider
             lazy_grammar=profile.lazy_grammar,
             capabilities=caps,
         )
-    if profile.kind == "openai":
+    if profile.kind is ProviderKind.OPENAI:
         from arise.llm.openai_compat import OpenAICompatProvider
 
         if not profile.base_url:
@@ -55,7 +61,7 @@ def build_backend(profile: ProviderSettings, run_index: int = 0) -> BaseProvider
             timeout=profile.timeout,
             key_env=profile.api_key_env,
         )
-    if profile.kind == "anthropic":
+    if profile.kind is ProviderKind.ANTHROPIC:
         from arise.llm.anthropic_provider import AnthropicProvider
 
         key = profile.api_key()
@@ -70,7 +76,7 @@ def build_backend(profile: ProviderSettings, run_index: int = 0) -> BaseProvider
             timeout=profile.timeout,
             key_env=profile.api_key_env or "ANTHROPIC_API_KEY",
         )
-    if profile.kind == "replay":
+    if profile.kind is ProviderKind.REPLAY:
         if not profile.cassette:
             raise LLMError("replay: no cassette; pass --replay FILE or set ARISE_REPLAY")
         return ReplayProvider(Path(profile.cassette), run_index=run_index)
@@ -99,10 +105,10 @@ def get_provider(
         name, overrides = "replay", {**overrides, "cassette": str(replay)}
     profile = with_overrides(settings, name or settings.provider, **overrides)
     provider: BaseProvider = build_backend(profile, run_index=run_index)
-    if profile.kind in ("openai", "anthropic"):
+    if profile.kind in (ProviderKind.OPENAI, ProviderKind.ANTHROPIC):
         provider = RetryingProvider(provider, retry or RetryPolicy(attempts=settings.retries))
     use_cache = settings.cache if cache is None else cache
-    if use_cache and profile.kind != "replay":
+    if use_cache and profile.kind is not ProviderKind.REPLAY:
         store = ResponseCache(
             cache_path or (Path(settings.cache_path).expanduser() if settings.cache_path else None)
         )

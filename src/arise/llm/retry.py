@@ -12,55 +12,61 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 from arise.llm.base import BaseProvider, Wrapper
-from arise.llm.types import Completion, ProviderError, ProviderUnavailable, Request
+from arise.llm.types import (
+    Completion,
+    ProviderError,
+    ProviderErrorKind,
+    ProviderUnavailable,
+    Request,
+)
 
 
 @dataclass(frozen=True)
-class ErrorKind:
-    name: str
+class ErrorRow:
+    kind: ProviderErrorKind
     retryable: bool
     description: str
 
 
-ERROR_TABLE: dict[str, ErrorKind] = {
-    k.name: k
-    for k in (
-        ErrorKind("rate_limited", True, "HTTP 429: too many requests or tokens per minute"),
-        ErrorKind("overloaded", True, "HTTP 503/529: the service is overloaded for now"),
-        ErrorKind("server_error", True, "HTTP 500/502/504 or another 5xx"),
-        ErrorKind("timeout", True, "no answer within the configured timeout"),
-        ErrorKind("connection", True, "connection refused or reset, or the name did not resolve"),
-        ErrorKind("auth", False, "HTTP 401/403: the key is missing, wrong or not allowed"),
-        ErrorKind("not_found", False, "HTTP 404: wrong base URL or unknown model name"),
-        ErrorKind("bad_request", False, "HTTP 400/413/422: the request is wrong (e.g. too long)"),
-        ErrorKind("other", False, "anything else the backend reports"),
+_K = ProviderErrorKind
+ERROR_TABLE: dict[ProviderErrorKind, ErrorRow] = {
+    row.kind: row
+    for row in (
+        ErrorRow(_K.RATE_LIMITED, True, "HTTP 429: too many requests or tokens per minute"),
+        ErrorRow(_K.OVERLOADED, True, "HTTP 503/529: the service is overloaded for now"),
+        ErrorRow(_K.SERVER_ERROR, True, "HTTP 500/502/504 or another 5xx"),
+        ErrorRow(_K.TIMEOUT, True, "no answer within the configured timeout"),
+        ErrorRow(_K.CONNECTION, True, "connection refused or reset, or the name did not resolve"),
+        ErrorRow(_K.AUTH, False, "HTTP 401/403: the key is missing, wrong or not allowed"),
+        ErrorRow(_K.NOT_FOUND, False, "HTTP 404: wrong base URL or unknown model name"),
+        ErrorRow(_K.BAD_REQUEST, False, "HTTP 400/413/422: the request is wrong (e.g. too long)"),
+        ErrorRow(_K.OTHER, False, "anything else the backend reports"),
     )
 }
 
 
-def kind_for_status(status: int | None) -> str:
+def kind_for_status(status: int | None) -> ProviderErrorKind:
     """Map an HTTP status to a row of ERROR_TABLE."""
     if status is None:
-        return "other"
+        return _K.OTHER
     if status == 429:
-        return "rate_limited"
+        return _K.RATE_LIMITED
     if status in (503, 529):
-        return "overloaded"
+        return _K.OVERLOADED
     if 500 <= status < 600:
-        return "server_error"
+        return _K.SERVER_ERROR
     if status in (401, 403):
-        return "auth"
+        return _K.AUTH
     if status == 404:
-        return "not_found"
+        return _K.NOT_FOUND
     if 400 <= status < 500:
-        return "bad_request"
-    return "other"
+        return _K.BAD_REQUEST
+    return _K.OTHER
 
 
 def is_retryable(error: BaseException) -> bool:
     if isinstance(error, ProviderError):
-        row = ERROR_TABLE.get(error.kind)
-        return bool(row and row.retryable)
+        return ERROR_TABLE[error.kind].retryable
     return False
 
 
@@ -100,7 +106,7 @@ class RetryingProvider(Wrapper):
             except ProviderError as error:
                 attempt += 1
                 if not is_retryable(error) or attempt >= self.policy.attempts:
-                    if error.kind in ("connection", "timeout"):
+                    if error.kind in (_K.CONNECTION, _K.TIMEOUT):
                         raise ProviderUnavailable(
                             f"{error} (gave up after {attempt} attempt(s))"
                         ) from error

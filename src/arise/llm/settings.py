@@ -11,13 +11,22 @@ from __future__ import annotations
 import os
 import tomllib
 from dataclasses import dataclass, field, fields, replace
+from enum import StrEnum
 from pathlib import Path
-from typing import Any, Literal, get_args
+from typing import Any, get_args
 
 from arise.llm.types import Capabilities, LLMError, MissingCredentials, StructuredStyle
 from arise.paths import config_path
 
-Kind = Literal["openai", "anthropic", "local", "replay"]
+
+class ProviderKind(StrEnum):
+    """Which backend a profile builds; parsed once from the config file, never compared as text."""
+
+    OPENAI = "openai"  # any OpenAI-compatible server (llama.cpp, Ollama, vLLM, the hosted ones)
+    ANTHROPIC = "anthropic"
+    LOCAL = "local"  # the embedded llama-cpp-python model
+    REPLAY = "replay"  # answers from a recorded cassette
+
 
 #: Words that mean "a secret" in a config file; we refuse them.
 _SECRET_FIELDS = {"api_key", "key", "token", "secret", "password"}
@@ -26,7 +35,7 @@ _SECRET_FIELDS = {"api_key", "key", "token", "secret", "password"}
 @dataclass(frozen=True)
 class ProviderSettings:
     name: str
-    kind: Kind
+    kind: ProviderKind
     model: str = ""
     base_url: str | None = None
     api_key_env: str | None = None
@@ -50,7 +59,7 @@ class ProviderSettings:
     def capabilities(self) -> Capabilities:
         return Capabilities(
             structured=self.structured,  # type: ignore[arg-type]
-            max_context=self.n_ctx if self.kind == "local" else self.max_context,
+            max_context=self.n_ctx if self.kind is ProviderKind.LOCAL else self.max_context,
             seed=self.seed,
             local=self.local,
         )
@@ -70,7 +79,7 @@ PRESETS: dict[str, ProviderSettings] = {
     for p in (
         ProviderSettings(
             "local",
-            "local",
+            ProviderKind.LOCAL,
             model="qwen2.5-coder-1.5b-instruct-q4_k_m",
             structured="json_object_schema",
             seed=True,
@@ -78,7 +87,7 @@ PRESETS: dict[str, ProviderSettings] = {
         ),
         ProviderSettings(
             "llamacpp",
-            "openai",
+            ProviderKind.OPENAI,
             model="local",
             base_url="http://127.0.0.1:8080/v1",
             api_key_env="LLAMACPP_API_KEY",
@@ -89,7 +98,7 @@ PRESETS: dict[str, ProviderSettings] = {
         ),
         ProviderSettings(
             "ollama",
-            "openai",
+            ProviderKind.OPENAI,
             model="qwen2.5-coder:1.5b",
             base_url="http://127.0.0.1:11434/v1",
             structured="json_schema",
@@ -99,7 +108,7 @@ PRESETS: dict[str, ProviderSettings] = {
         ),
         ProviderSettings(
             "vllm",
-            "openai",
+            ProviderKind.OPENAI,
             model="Qwen/Qwen2.5-Coder-7B-Instruct",
             base_url="http://127.0.0.1:8000/v1",
             api_key_env="VLLM_API_KEY",
@@ -110,7 +119,7 @@ PRESETS: dict[str, ProviderSettings] = {
         ),
         ProviderSettings(
             "openai",
-            "openai",
+            ProviderKind.OPENAI,
             model="gpt-4o-mini",
             base_url="https://api.openai.com/v1",
             api_key_env="OPENAI_API_KEY",
@@ -122,7 +131,7 @@ PRESETS: dict[str, ProviderSettings] = {
         ),
         ProviderSettings(
             "deepseek",
-            "openai",
+            ProviderKind.OPENAI,
             model="deepseek-chat",
             base_url="https://api.deepseek.com/v1",
             api_key_env="DEEPSEEK_API_KEY",
@@ -133,7 +142,7 @@ PRESETS: dict[str, ProviderSettings] = {
         ),
         ProviderSettings(
             "gemini",
-            "openai",
+            ProviderKind.OPENAI,
             model="gemini-2.5-flash",
             base_url="https://generativelanguage.googleapis.com/v1beta/openai/",
             api_key_env="GEMINI_API_KEY",
@@ -144,7 +153,7 @@ PRESETS: dict[str, ProviderSettings] = {
         ),
         ProviderSettings(
             "anthropic",
-            "anthropic",
+            ProviderKind.ANTHROPIC,
             model="claude-haiku-4-5",
             api_key_env="ANTHROPIC_API_KEY",
             key_required=True,
@@ -152,13 +161,12 @@ PRESETS: dict[str, ProviderSettings] = {
             max_context=200_000,
             timeout=120.0,
         ),
-        ProviderSettings("replay", "replay", model="recorded"),
+        ProviderSettings("replay", ProviderKind.REPLAY, model="recorded"),
     )
 }
 
 _FIELD_TYPES = {f.name: f.type for f in fields(ProviderSettings)}
 _STRUCTURED_STYLES = get_args(StructuredStyle)
-_KINDS = get_args(Kind)
 
 
 @dataclass(frozen=True)
@@ -219,11 +227,20 @@ def _apply(profile: ProviderSettings, values: dict[str, Any], where: str) -> Pro
         if key == "name" or key not in _FIELD_TYPES:
             raise LLMError(f"{where}: unknown setting {raw_key!r}")
         updates[key] = _coerce(key, value, where)
-    choices = {"structured": _STRUCTURED_STYLES, "kind": _KINDS}
-    for key, allowed in choices.items():
-        if key in updates and updates[key] not in allowed:
-            raise LLMError(f"{where}: {key} must be one of {', '.join(allowed)}")
+    if "kind" in updates:
+        updates["kind"] = _parse_kind(updates["kind"], where)
+    if "structured" in updates and updates["structured"] not in _STRUCTURED_STYLES:
+        raise LLMError(f"{where}: structured must be one of {', '.join(_STRUCTURED_STYLES)}")
     return replace(profile, **updates)
+
+
+def _parse_kind(value: Any, where: str) -> ProviderKind:
+    """The one place a profile's kind is read from text."""
+    try:
+        return ProviderKind(value)
+    except ValueError:
+        allowed = ", ".join(k.value for k in ProviderKind)
+        raise LLMError(f"{where}: kind must be one of {allowed}, not {value!r}") from None
 
 
 def load_settings(path: Path | None = None, env: dict[str, str] | None = None) -> Settings:
@@ -245,9 +262,7 @@ def load_settings(path: Path | None = None, env: dict[str, str] | None = None) -
             profiles[name] = _apply(profiles[name], dict(values), where)
         else:
             values = dict(values)
-            kind = values.pop("kind", "openai")
-            if kind not in ("openai", "anthropic", "local", "replay"):
-                raise LLMError(f"{where}: kind must be openai, anthropic, local or replay")
+            kind = _parse_kind(values.pop("kind", ProviderKind.OPENAI), where)
             profiles[name] = _apply(ProviderSettings(name, kind), values, where)
     for key in llm:
         if key.replace("-", "_") in _SECRET_FIELDS:

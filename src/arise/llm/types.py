@@ -261,6 +261,23 @@ class ModelNotInstalled(ProviderUnavailable):
     """The local GGUF file is not where the settings say."""
 
 
+class ProviderErrorKind(StrEnum):
+    """Why a backend call failed; each is one row of ``retry.ERROR_TABLE`` (retried or not).
+
+    The values are the words the docs and any stored text use, so they never change.
+    """
+
+    RATE_LIMITED = "rate_limited"
+    OVERLOADED = "overloaded"
+    SERVER_ERROR = "server_error"
+    TIMEOUT = "timeout"
+    CONNECTION = "connection"
+    AUTH = "auth"
+    NOT_FOUND = "not_found"
+    BAD_REQUEST = "bad_request"
+    OTHER = "other"
+
+
 class ProviderError(LLMError):
     """The backend answered with an error. ``kind`` is a row of the table in ``retry.py``."""
 
@@ -268,11 +285,11 @@ class ProviderError(LLMError):
         self,
         message: str,
         *,
-        kind: str,
+        kind: ProviderErrorKind,
         status: int | None = None,
         retry_after: float | None = None,
     ) -> None:
-        self.kind = kind
+        self.kind = ProviderErrorKind(kind)  # a stray string fails here, not in the retry table
         self.status = status
         self.retry_after = retry_after
         super().__init__(message)

@@ -71,6 +71,8 @@ import warnings
 from pathlib import Path
 from typing import Any
 
+from arise.errors import AriseError
+
 STUCK_BEHAVIOR_SECONDS = 3  # a behavior step this long without an action is a bug
 # Parsed maps kept per worker, budgeted by OpenDRIVE file size: a CARLA town (1-3.5 MB of
 # XML) costs ~30-100 MB parsed; our own maps (< 40 kB) almost nothing.
@@ -89,8 +91,9 @@ REGULATED_CONTROL_PARAMETERS = (
 _NETWORK_CACHE: dict[tuple[Any, ...], Any] = {}
 
 
-class ScenicChanged(RuntimeError):
-    """Scenic's internals no longer look as arise's patches expect."""
+class ScenicChanged(AriseError):
+    """Scenic's internals no longer look as arise's patches expect (an installation problem:
+    the pinned Scenic 3.1 line was replaced), so no worker may run with half the patches."""
 
 
 def check_shapes() -> list[str]:

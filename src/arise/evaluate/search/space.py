@@ -18,6 +18,8 @@ import tokenize
 from dataclasses import dataclass, field
 from enum import StrEnum
 
+from arise.errors import AriseError
+
 ParamValue = float | int | str | bool
 
 #: Spread of a `Normal(mean, sd)` searched as a range: mean +- this many sd.
@@ -63,8 +65,9 @@ class _Parsed:
     verifai: bool = False
 
 
-class _NotLiteral(Exception):
-    """An argument that is not a literal we can read without running the script."""
+class _NotLiteral(AriseError):
+    """An argument that is not a literal we can read without running the script (caught
+    here: such a param is simply not searched)."""
 
 
 def _code_part(line: str) -> str:

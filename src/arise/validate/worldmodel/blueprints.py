@@ -6,12 +6,18 @@ import difflib
 from functools import cache
 from typing import Any
 
+from arise.errors import AriseError
+
 # Which blueprint prefixes each kind of actor may use.
 _PREFIX_FOR_CLASS = {"Pedestrian": ("walker.",), "Vehicle": ("vehicle.",), "Prop": ("static.",)}
 
 
-class UnknownBlueprintError(ValueError):
-    """The script asks for a blueprint the installed CARLA version does not have."""
+class UnknownBlueprintError(AriseError):
+    """The script asks for a blueprint the installed CARLA version does not have.
+
+    Raised inside Scenic's `simulate()`, which lets it through; the diagnostics and the
+    repair rules know it by its class name.
+    """
 
 
 @cache

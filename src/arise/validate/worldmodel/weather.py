@@ -8,13 +8,18 @@ from __future__ import annotations
 import difflib
 from typing import Any
 
+from arise.errors import AriseError
 from arise.vocabulary import WEATHER_FIELDS, WEATHER_PRESETS
 
 __all__ = ["WEATHER_FIELDS", "WEATHER_PRESETS", "WeatherError", "check_weather"]
 
 
-class WeatherError(ValueError):
-    """The weather param names something CARLA does not have."""
+class WeatherError(AriseError):
+    """The weather param names something CARLA does not have.
+
+    Scenic lets it through `simulate()` (it retries rejections only); the diagnostics and
+    the repair rules know it by its class name, the knowledge-base lint catches it by type.
+    """
 
 
 def _suggest(word: str, choices: tuple[str, ...]) -> str:
