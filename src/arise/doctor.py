@@ -15,13 +15,12 @@ from enum import StrEnum
 from typing import Annotated
 
 import typer
-from rich.console import Console
-from rich.markup import escape
 
+from arise import terminal
 from arise.errors import AriseError
 from arise.paths import cache_dir, config_path
 
-console = Console(soft_wrap=True, highlight=False)
+console = terminal.console()
 
 
 class Verdict(StrEnum):
@@ -222,8 +221,11 @@ def doctor_command(
     colour = {Verdict.OK: "green", Verdict.WARN: "yellow", Verdict.FAIL: "bold red"}
     for finding in findings:
         console.print(
-            f"[{colour[finding.verdict]}]{finding.verdict.value:>4}[/] "
-            f"{finding.topic:<8} {escape(finding.text)}"
+            terminal.text(
+                (f"{finding.verdict.value:>4}", colour[finding.verdict]),
+                f" {finding.topic:<8} ",
+                finding.text,
+            )
         )
     failed = [f for f in findings if f.verdict is Verdict.FAIL]
     console.print("\nready" if not failed else f"\n{len(failed)} problem(s) to fix")

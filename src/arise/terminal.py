@@ -23,6 +23,8 @@ from rich.text import Text
 MAX_SHOWN = 4096
 #: For names (a file, an agent, a map): one line, and short.
 MAX_NAME_SHOWN = 256
+#: A whole script shown on request (`--show-scripts`, `arise kb show`).
+MAX_SCRIPT_SHOWN = 256 * 1024
 
 # Bidirectional controls (embeddings, overrides, isolates, marks) and line separators:
 # not C0/C1 controls, but they reorder or break what the reader sees.

@@ -6,7 +6,6 @@ from pathlib import Path
 from typing import Annotated
 
 import typer
-from rich.console import Console
 from rich.progress import (
     BarColumn,
     MofNCompleteColumn,
@@ -16,6 +15,7 @@ from rich.progress import (
     TimeRemainingColumn,
 )
 
+from arise import terminal
 from arise.evaluate.prompt_file import read_prompts
 from arise.evaluate.records import RunRecord
 from arise.evaluate.report import write_report
@@ -33,8 +33,8 @@ from arise.generate.options import GenerateOptions, Mode
 from arise.llm.cli_options import ModelOption, ProviderOption, ReplayOption
 from arise.validate.types import confinement_summary
 
-console = Console(soft_wrap=True)
-errors = Console(stderr=True, soft_wrap=True)
+console = terminal.console()
+errors = terminal.console(stderr=True)
 
 BENCH_HELP = """Run the generator over a prompt file and measure it the paper's way.
 
@@ -179,7 +179,10 @@ def bench_command(
         todo = pending(config, store)
         total = len(todo) + len(store.done_keys())
         console.print(
-            f"{len(todo)} run(s) to do, {total - len(todo)} already in {out / 'bench.sqlite'}"
+            terminal.text(
+                f"{len(todo)} run(s) to do, {total - len(todo)} already in ",
+                terminal.name(out / "bench.sqlite"),
+            )
         )
         if judge:
             console.print(f"{len(unjudged(config, store))} finished run(s) to judge first")
@@ -193,8 +196,14 @@ def bench_command(
         records = store.runs()
         written = write_report(records, out / "report", store.meta())
     executed = sum(r.ok for r in records)
-    console.print(f"{executed} of {len(records)} runs executable; report: {written[0]}")
-    console.print("sandbox: " + confinement_summary([r.sandbox for r in records if r.ok]))
+    console.print(
+        terminal.text(
+            f"{executed} of {len(records)} runs executable; report: ", terminal.name(written[0])
+        )
+    )
+    console.print(
+        terminal.text("sandbox: ", confinement_summary([r.sandbox for r in records if r.ok]))
+    )
 
 
 def _judge_with_bar(config: BenchConfig, store: BenchStore, out: Path) -> None:
@@ -214,7 +223,11 @@ def _judge_with_bar(config: BenchConfig, store: BenchStore, out: Path) -> None:
             if not console.is_terminal:
                 scs = record.scs
                 console.print(
-                    f"judged {record.task.label()}: SCS {'-' if scs is None else f'{scs:.2f}'}"
+                    terminal.text(
+                        "judged ",
+                        terminal.name(record.task.label()),
+                        f": SCS {'-' if scs is None else f'{scs:.2f}'}",
+                    )
                 )
 
         judge_missing(config, store, out, advance)
@@ -238,8 +251,12 @@ def _run_with_bar(config: BenchConfig, store: BenchStore, out: Path, count: int)
             bar.update(task, advance=1, description=f"runs ({ok[0]} executable)")
             if not console.is_terminal:
                 console.print(
-                    f"{record.task.label()}: {record.status} "
-                    f"({record.repairs} repairs, {record.seconds:.0f} s)"
+                    terminal.text(
+                        terminal.name(record.task.label()),
+                        ": ",
+                        terminal.name(record.status),
+                        f" ({record.repairs} repairs, {record.seconds:.0f} s)",
+                    )
                 )
 
         run_bench(config, store, out, advance)
@@ -278,14 +295,18 @@ def report_command(
     ] = 0,
 ) -> None:
     if not database.is_file():
-        errors.print(f"[red]error:[/red] no such database: {database}")
+        errors.print(
+            terminal.text(("error:", "red"), " no such database: ", terminal.name(database))
+        )
         raise typer.Exit(2)
     with BenchStore(database) as store:  # BenchStoreError: one line, exit 2
         if recheck_runs:
             count = recheck(store, map_dir=map_dir)
             console.print(
-                f"re-checked {count} executed run(s); sandbox: "
-                + confinement_summary([r.sandbox for r in store.runs() if r.ok])
+                terminal.text(
+                    f"re-checked {count} executed run(s); sandbox: ",
+                    confinement_summary([r.sandbox for r in store.runs() if r.ok]),
+                )
             )
         if search_trials:
             from arise.evaluate.search.bench import search_runs
@@ -294,16 +315,25 @@ def report_command(
                 store,
                 search_trials,
                 on_record=lambda r: console.print(
-                    f"searched {r.task.label()}: "
-                    f"{'critical' if (r.criticality or {})['search']['critical'] else 'not critical'}"
-                    f" within {search_trials} trials"
+                    terminal.text(
+                        "searched ",
+                        terminal.name(r.task.label()),
+                        ": critical"
+                        if (r.criticality or {})["search"]["critical"]
+                        else ": not critical",
+                        f" within {search_trials} trials",
+                    )
                 ),
             )
             console.print(f"searched {count} executed run(s)")
         records, meta = store.runs(), store.meta()
     if not records:
-        errors.print(f"[red]error:[/red] {database} holds no finished runs yet")
+        errors.print(
+            terminal.text(
+                ("error:", "red"), " ", terminal.name(database), " holds no finished runs yet"
+            )
+        )
         raise typer.Exit(2)
     written = write_report(records, out or database.parent / "report", meta, title)
     for path in written:
-        console.print(str(path))
+        console.print(terminal.text(terminal.name(path)))

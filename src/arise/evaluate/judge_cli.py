@@ -7,10 +7,9 @@ from pathlib import Path
 from typing import Annotated, Any
 
 import typer
-from rich.console import Console
-from rich.markup import escape
 from rich.table import Table
 
+from arise import terminal
 from arise.errors import AriseError
 from arise.evaluate.judge import (
     CRITERIA,
@@ -31,8 +30,8 @@ from arise.llm.cli_options import (
 )
 from arise.llm.registry import get_provider
 
-console = Console(soft_wrap=True)
-errors = Console(stderr=True, soft_wrap=True)
+console = terminal.console()
+errors = terminal.console(stderr=True)
 
 JUDGE_HELP = """Score how well a Scenic script says what its description says (SCS).
 
@@ -173,7 +172,8 @@ def judge_command(
 
     if as_json:
         payload = {"description": text_description, "script": str(script), **result.as_dict()}
-        print(json.dumps(payload, indent=2, ensure_ascii=False))
+        # ASCII: a C1 control or a bidi override in a reason stays an escape in the output
+        print(json.dumps(payload, indent=2))
         return
     if isinstance(result, Judgement):
         _print_judgement(result)
@@ -201,15 +201,19 @@ def _print_judgement(result: Judgement) -> None:
         row = [name, f"{result.scores[name]}/10"]
         if _weighted(result.weights):
             row.append(f"{result.weights[name]:g}")
-        row.append(escape(result.reasons[name]))
-        table.add_row(*row)
+        table.add_row(*row, terminal.text(result.reasons[name]))
     console.print(table)
     source = "cache" if result.cached else f"{result.seconds:.1f} s"
     console.print(
-        f"[bold]SCS {100 * result.scs:.2f} %[/bold]  [dim]({escape(result.model)}, "
-        f"{source}, {result.usage.prompt_tokens} prompt + "
-        f"{result.usage.completion_tokens} completion tokens)[/dim]",
-        highlight=False,
+        terminal.text(
+            (f"SCS {100 * result.scs:.2f} %", "bold"),
+            "  ",
+            (
+                f"({terminal.name(result.model)}, {source}, {result.usage.prompt_tokens} prompt"
+                f" + {result.usage.completion_tokens} completion tokens)",
+                "dim",
+            ),
+        )
     )
 
 
@@ -235,10 +239,9 @@ def _print_consistency(result: Consistency) -> None:
     )
     console.print(table)
     for line in result.failures:
-        console.print(f"[yellow]failed:[/yellow] {escape(line)}", highlight=False)
+        console.print(terminal.text(("failed:", "yellow"), " ", line))
     usage = result.usage
     console.print(
         f"[dim]{usage.calls} calls, {usage.seconds:.1f} s, {usage.prompt_tokens} "
-        f"prompt + {usage.completion_tokens} completion tokens[/dim]",
-        highlight=False,
+        f"prompt + {usage.completion_tokens} completion tokens[/dim]"
     )

@@ -9,9 +9,8 @@ from __future__ import annotations
 from typing import Annotated
 
 import typer
-from rich.console import Console
-from rich.markup import escape
 
+from arise import terminal
 from arise.generate.prefixes import fixed_prefixes
 from arise.llm.types import LLMError, PrefixUse
 
@@ -23,7 +22,7 @@ WARM_HELP = (
     "Example: arise llm warm --clear (delete the store)"
 )
 
-console = Console(soft_wrap=True)
+console = terminal.console()
 
 _SAID = {
     PrefixUse.BUILT: "built and stored",
@@ -52,15 +51,18 @@ def warm_command(
         raise LLMError("the prefix store is off (ARISE_PREFIX_STORE=off or prefix_store = false)")
     if clear:
         removed = store.clear()
-        console.print(f"removed {removed} stored prefix(es) from {escape(str(store.root))}")
+        console.print(
+            terminal.text(f"removed {removed} stored prefix(es) from ", terminal.name(store.root))
+        )
         return
     with console.status("evaluating the fixed prompt prefixes..."):
         outcomes = backend.warm(fixed_prefixes())
     for name, outcome in outcomes.items():
         console.print(
-            f"{name}: {outcome.tokens} tokens, {_SAID[outcome.use]} ({outcome.seconds:.1f} s)",
-            highlight=False,
+            terminal.text(
+                f"{name}: {outcome.tokens} tokens, {_SAID[outcome.use]} ({outcome.seconds:.1f} s)"
+            )
         )
     for note in store.discarded:
-        console.print(f"[yellow]rebuilt[/yellow] {escape(note)}")
-    console.print(f"store: {escape(store.describe())}", highlight=False)
+        console.print(terminal.text(("rebuilt", "yellow"), " ", note))
+    console.print(terminal.text("store: ", store.describe()))

@@ -6,15 +6,15 @@ import json
 from typing import Annotated
 
 import typer
-from rich.console import Console
 from rich.syntax import Syntax
 from rich.table import Table
 
+from arise import terminal
 from arise.kb.loader import ENV_VAR, KnowledgeBase, load_kb
 from arise.kb.schema import Component
 
-console = Console(soft_wrap=True)
-errors = Console(stderr=True, soft_wrap=True)
+console = terminal.console()
+errors = terminal.console(stderr=True)
 
 app = typer.Typer(
     name="kb",
@@ -41,7 +41,7 @@ def _load(kb_dirs: list[str] | None) -> KnowledgeBase:
     """Load everything; a bad user file is reported, and the rest still loads."""
     kb = load_kb(kb_dirs or ())
     for problem in kb.problems:
-        errors.print(f"[yellow]skipped:[/yellow] {problem}")
+        errors.print(terminal.text(("skipped:", "yellow"), " ", problem))
     return kb
 
 
@@ -57,10 +57,10 @@ def list_command(kb_dirs: KbDirs = None, component: ComponentOpt = None) -> None
         if component is not None and entry.component is not component:
             continue
         table.add_row(
-            entry.id,
-            entry.descriptions[0],
-            ", ".join(entry.adversaries) or "any",
-            ", ".join(entry.map_features),
+            terminal.text(terminal.name(entry.id)),
+            terminal.text(entry.descriptions[0]),
+            terminal.text(", ".join(entry.adversaries) or "any"),
+            terminal.text(", ".join(entry.map_features)),
         )
     console.print(table)
     counts = kb.counts()
@@ -78,13 +78,22 @@ def show_command(
     if entry_id not in kb:
         close = [e.id for e in kb if entry_id.split(".")[-1] in e.id][:5]
         errors.print(
-            f"no entry {entry_id!r}" + (f"; did you mean {', '.join(close)}?" if close else "")
+            terminal.text(
+                f"no entry {entry_id!r}" + (f"; did you mean {', '.join(close)}?" if close else "")
+            )
         )
         raise typer.Exit(2)
     entry = kb.get(entry_id)
-    console.print(f"[bold]{entry.id}[/bold]  ({entry.component.value}, from {entry.source})")
+    console.print(
+        terminal.text(
+            (terminal.name(entry.id), "bold"),
+            f"  ({entry.component.value}, from ",
+            terminal.name(entry.source),
+            ")",
+        )
+    )
     for description in entry.descriptions:
-        console.print(f"  - {description}")
+        console.print(terminal.text("  - ", description))
     for label, values in (
         ("defines", entry.defines),
         ("needs", entry.needs),
@@ -96,8 +105,9 @@ def show_command(
         ("companions", entry.companions),
     ):
         if values:
-            console.print(f"  {label}: {', '.join(values)}")
-    console.print(Syntax(entry.snippet, "python", line_numbers=False))
+            console.print(terminal.text(f"  {label}: ", ", ".join(values)))
+    snippet = terminal.shown(entry.snippet, terminal.MAX_SCRIPT_SHOWN)
+    console.print(Syntax(snippet, "python", line_numbers=False))
 
 
 @app.command("search")
@@ -115,7 +125,7 @@ def search_command(
     kb = _load(kb_dirs)
     retriever = make_retriever(kb, backend, model)  # RetrieverError: one line, exit 2
     components = [component] if component is not None else list(Component)
-    table = Table(title=f"backend: {retriever.name}")
+    table = Table(title=terminal.text("backend: ", terminal.name(retriever.name)))
     for column in ("component", "rank"):
         table.add_column(column)
     table.add_column("id", no_wrap=True)
@@ -124,7 +134,11 @@ def search_command(
     for chosen in components:
         for rank, hit in enumerate(retriever.search(query, chosen, k), start=1):
             table.add_row(
-                chosen.value, str(rank), hit.entry.id, f"{hit.score:.3f}", hit.entry.descriptions[0]
+                chosen.value,
+                str(rank),
+                terminal.text(terminal.name(hit.entry.id)),
+                f"{hit.score:.3f}",
+                terminal.text(hit.entry.descriptions[0]),
             )
     console.print(table)
 
@@ -158,21 +172,22 @@ def validate_command(
     ]
     unknown = sorted(set(entry or ()) - set(kb.entries))
     if unknown:
-        errors.print(f"no such entries: {', '.join(unknown)}")
+        errors.print(terminal.text("no such entries: ", ", ".join(unknown)))
         raise typer.Exit(2)
 
     def progress(outcome: ScriptOutcome) -> None:
         if as_json:
             return
-        mark = "[green]✔[/green]" if outcome.ok else "[red]✘[/red]"
-        console.print(f"{mark} {outcome.seconds:5.1f}s {outcome.describe()}")
+        mark = ("✔", "green") if outcome.ok else ("✘", "red")
+        console.print(terminal.text(mark, f" {outcome.seconds:5.1f}s ", outcome.describe()))
         if show_scripts:
-            console.print(Syntax(outcome.composition.script(), "python", line_numbers=True))
+            script = terminal.shown(outcome.composition.script(), terminal.MAX_SCRIPT_SHOWN)
+            console.print(Syntax(script, "python", line_numbers=True))
 
     options = CheckOptions(seed=seed, steps=steps, timeout=90)
     report = validate_kb(kb, only=only, options=options, workers=workers, on_outcome=progress)
-    if as_json:
-        console.print_json(
+    if as_json:  # ensure_ascii: a control character in a name stays an escape
+        print(
             json.dumps(
                 {
                     "ok": report.ok,
@@ -193,15 +208,18 @@ def validate_command(
                         }
                         for o in report.outcomes
                     ],
-                }
+                },
+                indent=2,
             )
         )
     else:
-        console.print(report.summary())
+        console.print(terminal.text(report.summary()))
         console.print(
-            "sandbox: "
-            + confinement_summary(
-                [o.result.sandbox.label if o.result.sandbox else None for o in report.outcomes]
+            terminal.text(
+                "sandbox: ",
+                confinement_summary(
+                    [o.result.sandbox.label if o.result.sandbox else None for o in report.outcomes]
+                ),
             )
         )
     raise typer.Exit(0 if report.ok else 1)

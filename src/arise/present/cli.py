@@ -6,15 +6,14 @@ from pathlib import Path
 from typing import Annotated
 
 import typer
-from rich.console import Console
-from rich.markup import escape
 
+from arise import terminal
 from arise.present.replay import write_replay
 from arise.present.source import TraceSource, load_trace
 from arise.present.tracefile import write_trace
 from arise.present.xosc import EgoMode, write_export
 
-console = Console(soft_wrap=True)
+console = terminal.console()
 
 REPLAY_HELP = """Draw the animated replay of a run: replay.gif and replay.html.
 
@@ -75,12 +74,14 @@ def _out_dir(target: Path, out: Path | None) -> Path:
 
 def _say_source(source: TraceSource) -> None:
     console.print(
-        f"trace: {source.origin.value}, {source.simulation.steps} steps, "
-        f"{len(source.simulation.agents)} agents"
-        + (f", map {escape(source.map.name)}" if source.map else "")
+        terminal.text(
+            f"trace: {source.origin.value}, {source.simulation.steps} steps, "
+            f"{len(source.simulation.agents)} agents",
+            f", map {terminal.name(source.map.name)}" if source.map else "",
+        )
     )
     for note in source.notes:
-        console.print(f"  note: {escape(note)}")
+        console.print(terminal.text("  note: ", note))
 
 
 def replay_command(
@@ -98,7 +99,8 @@ def replay_command(
     files = write_replay(source, folder, still=png, map_dir=map_dir)
     for path in (files.gif, files.html, files.png):
         if path is not None:
-            console.print(f"wrote {escape(str(path))} ({path.stat().st_size // 1024} KiB)")
+            size = path.stat().st_size // 1024
+            console.print(terminal.text("wrote ", terminal.name(path), f" ({size} KiB)"))
 
 
 def export_command(
@@ -118,10 +120,16 @@ def export_command(
     write_trace(folder, source.saved())
     files = write_export(source, folder, ego, map_dir=map_dir)
     console.print(
-        f"wrote {escape(str(files.xosc))} (OpenSCENARIO 1.2, "
-        f"{sum(files.vertices.values())} trajectory vertices for {len(files.vertices)} agents)"
+        terminal.text(
+            "wrote ",
+            terminal.name(files.xosc),
+            f" (OpenSCENARIO 1.2, {sum(files.vertices.values())} trajectory vertices "
+            f"for {len(files.vertices)} agents)",
+        )
     )
     if files.xodr is not None:
-        console.print(f"wrote {escape(str(files.xodr))} (the map it references)")
+        console.print(
+            terminal.text("wrote ", terminal.name(files.xodr), " (the map it references)")
+        )
     for note in files.notes:
-        console.print(f"  note: {escape(note)}")
+        console.print(terminal.text("  note: ", note))

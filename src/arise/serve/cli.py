@@ -8,8 +8,8 @@ from pathlib import Path
 from typing import Annotated
 
 import typer
-from rich.console import Console
 
+from arise import terminal
 from arise.generate.options import GenerateOptions
 from arise.llm.cli_options import ModelOption, ProviderOption, ReplayOption
 from arise.serve.config import (
@@ -22,7 +22,7 @@ from arise.serve.config import (
 )
 from arise.serve.errors import ServeError
 
-console = Console(soft_wrap=True)
+console = terminal.console()
 
 SERVE_HELP = f"""Open arise in a browser: describe a scenario, watch it being made, see it move.
 
@@ -112,9 +112,9 @@ def serve_command(
     )
     shown = f"[{host}]" if ":" in host else host
     address = f"http://{shown}:{port}/" + (f"?token={token}" if token else "")
-    console.print(f"arise serve: open {address}", highlight=False, markup=False)
-    console.print(f"runs are kept in {config.runs_dir}", highlight=False, markup=False)
+    console.print(terminal.text("arise serve: open ", address))
+    console.print(terminal.text("runs are kept in ", terminal.name(config.runs_dir)))
     if os.environ.get(TOKEN_ENV) and token == os.environ[TOKEN_ENV]:
-        console.print(f"(token from {TOKEN_ENV})", highlight=False, markup=False)
+        console.print(terminal.text(f"(token from {TOKEN_ENV})"))
     app = guarded(config, create_app(config))
     uvicorn.run(app, host=host, port=port, log_level="warning", access_log=False)

@@ -7,11 +7,10 @@ from pathlib import Path
 from typing import Annotated, TypeVar
 
 import typer
-from rich.console import Console
-from rich.markup import escape
 from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
 from rich.table import Table
 
+from arise import terminal
 from arise.evaluate.search.errors import SearchError
 from arise.evaluate.search.executor import Executor
 from arise.evaluate.search.expression import FACTS, parse_expression
@@ -28,7 +27,7 @@ from arise.evaluate.search.sampler import SamplerKind
 from arise.evaluate.search.store import SearchStore, TrialRecord
 from arise.validate import CheckOptions
 
-console = Console(soft_wrap=True, highlight=False)
+console = terminal.console()
 
 SEARCH_HELP = """Find the most critical instance of a script with VerifAI's samplers.
 
@@ -152,21 +151,30 @@ def search_command(
                 results.append(_run_with_bar(config, store))
             except KeyboardInterrupt:
                 console.print(
-                    f"\ninterrupted: finished trials are in {escape(str(store.path))}; "
-                    "run the same command to resume"
+                    terminal.text(
+                        "\ninterrupted: finished trials are in ",
+                        terminal.name(store.path),
+                        "; run the same command to resume",
+                    )
                 )
                 raise typer.Exit(130) from None
     _print_table(results)
     files = write_outputs(results, folder, replay=replay)
     if files.critical_script is not None:
-        console.print(f"critical instance: {escape(str(files.critical_script))}")
+        console.print(terminal.text("critical instance: ", terminal.name(files.critical_script)))
     for path in files.replay:
-        console.print(f"  {escape(str(path))}")
+        console.print(terminal.text("  ", terminal.name(path)))
     for note in files.notes:
-        console.print(f"note: {escape(note)}")
+        console.print(terminal.text("note: ", note))
     console.print(
-        f"trials: {escape(str(files.trials_csv))}; plot: {escape(str(files.plot))}; "
-        f"summary: {escape(str(files.summary))}"
+        terminal.text(
+            "trials: ",
+            terminal.name(files.trials_csv),
+            "; plot: ",
+            terminal.name(files.plot),
+            "; summary: ",
+            terminal.name(files.summary),
+        )
     )
 
 
@@ -192,7 +200,7 @@ def _run_with_bar(config: SearchConfig, store: SearchStore) -> SearchResult:
                 )
             bar.update(task, advance=1, description=text)
             if not console.is_terminal:
-                console.print(f"{name} {escape(describe(record, config.objective))}")
+                console.print(terminal.text(name, " ", describe(record, config.objective)))
 
         return run_search(config, store, advance)
 
@@ -202,7 +210,10 @@ def _print_table(results: list[SearchResult]) -> None:
         return
     objective = results[0].config.objective
     table = Table(
-        title=f"{results[0].config.script.name}: {objective.label}, smaller is more critical"
+        title=terminal.text(
+            terminal.name(results[0].config.script.name),
+            f": {objective.label}, smaller is more critical",
+        )
     )
     for column in (
         "sampler",

@@ -17,9 +17,8 @@ from pathlib import Path
 from typing import Annotated, Any
 
 import typer
-from rich.console import Console
-from rich.markup import escape
 
+from arise import terminal
 from arise.evaluate.criticality import criticality
 from arise.evaluate.search.errors import SearchError
 from arise.evaluate.search.objective import Objective, score
@@ -31,7 +30,7 @@ from arise.present.files import write_text_atomic
 from arise.present.tracefile import read_trace
 from arise.validate import CheckOptions
 
-console = Console(soft_wrap=True, highlight=False)
+console = terminal.console()
 
 
 def executed_runs(out: Path) -> list[Path]:
@@ -98,14 +97,16 @@ def search_run(folder: Path, trials: int, seed: int, map_dir: str | None) -> dic
     report["critical_search"] = entry
     write_text_atomic(report_path, json.dumps(report, indent=2, default=str) + "\n")
     if best is not None:
-        console.print(f"  critical instance: {escape(describe(best, config.objective))}")
-        console.print(f"    {escape(str(files.critical_script))}")
+        console.print(terminal.text("  critical instance: ", describe(best, config.objective)))
+        console.print(terminal.text("    ", terminal.name(files.critical_script)))
     sampled = entry["sampled"]
     if sampled is not None:
         console.print(
-            f"  sampled instance: min TTC {sampled['min_ttc']}, "
-            f"min distance {sampled['min_distance']} m, "
-            f"collision {'yes' if sampled['collision'] else 'no'}"
+            terminal.text(
+                f"  sampled instance: min TTC {sampled['min_ttc']}, "
+                f"min distance {sampled['min_distance']} m, "
+                f"collision {'yes' if sampled['collision'] else 'no'}"
+            )
         )
     return entry
 
@@ -147,7 +148,11 @@ def with_critical_search(command: Callable[..., None]) -> Callable[..., None]:
             if critical_trials < 1:
                 raise SearchError("--critical-trials must be at least 1")
             for folder in executed_runs(Path(kwargs["out"])):
-                console.print(f"searching {escape(str(folder))} ({critical_trials} trials)")
+                console.print(
+                    terminal.text(
+                        "searching ", terminal.name(folder), f" ({critical_trials} trials)"
+                    )
+                )
                 search_run(folder, critical_trials, int(kwargs["seed"]), kwargs.get("map_dir"))
         raise typer.Exit(code)
 
