@@ -101,13 +101,10 @@ def file_digest(path: Path) -> str:
         return _digest_of(fd, path)
 
 
-def _touch(folder: Path) -> bool:
-    """Mark a cache folder used now; False when it is gone (evicted meanwhile)."""
-    try:
+def _touch(folder: Path) -> None:
+    """Mark a cache folder used now (a read-only cache is used as it is)."""
+    with contextlib.suppress(OSError):
         os.utime(folder)
-    except OSError:
-        return False
-    return True
 
 
 def _is_regular(path: Path) -> bool:
@@ -132,7 +129,8 @@ def cached_copy(path: Path, name: str | None = None) -> Path:
         digest = _known.get(key) or _digest_of(fd, path)
         folder = root / digest
         target = folder / f"{name}.xodr"
-        if _touch(folder) and _is_regular(target):
+        _touch(folder)  # before the look: an evictor that moved it meanwhile puts it back
+        if _is_regular(target):
             _known[key] = digest
             return target
         _copy_in(fd, path, root, target)
