@@ -2,10 +2,20 @@
 
 from __future__ import annotations
 
+import builtins
+import math
+import operator
+import string
+import sys
+import typing
+from pathlib import Path
+
+import numpy
 import pytest
 from scenic.syntax.parser import parse_string
 
-from arise.validate.gate import scan_tokens, scan_tree
+from arise.validate import identity
+from arise.validate.gate import model_refusal, module_exists, scan_tokens, scan_tree
 
 ALLOWED = """
 Town = 'Town01'
@@ -14,8 +24,8 @@ model scenic.simulators.carla.model
 import math
 import random
 import numpy as np
-from numpy import linalg
 from scenic.simulators.carla.actions import *
+from numpy import linalg
 class Helper:
     def __init__(self):
         self.value = math.pi + np.sqrt(2) + linalg.norm([3, 4]) + random.uniform(0, 1)
@@ -106,6 +116,157 @@ def test_refusals(source: str, word: str) -> None:
     assert refused and any(word in what for what in refused), refused
 
 
+# Issue 27: names are judged by what they are, not by how they are spelled.
+@pytest.mark.parametrize(
+    ("source", "word"),
+    [
+        # public names of Scenic's modules that are other modules
+        ("from scenic.domains.driving.roads import enum", "the module 'enum'"),
+        ("import scenic.domains.driving.roads as roads\nh = roads.hashlib.md5", "'hashlib'"),
+        (
+            "import scenic.simulators.carla.simulator as sim\np = sim.errors.pdb",
+            "'scenic.core.errors'",
+        ),
+        ("import scenic.core.vectors as v\nm = v.numpy.random.mtrand", "'numpy.random.mtrand'"),
+        ("import scenic.core.vectors\nz = scenic.core.lazy_eval", "'scenic.core.vectors'"),
+        # getattr and its kin as attributes of anything
+        ("x = thing.getattr(ego, 'speed')", "'.getattr' is not allowed"),
+        ("import scenic.domains.driving.roads as r\nr.enum.bltns.setattr", "'.setattr'"),
+        # a module is used only as `module.name`: never aliased, passed or stored
+        ("import numpy\nn = numpy\nn.polyfit", "'numpy' may only be used as 'numpy.<name>'"),
+        ("import numpy as np\nrng = np.random", "'numpy.random' may only be used"),
+        ("import math\ndef f(m=math):\n    return m", "'math' may only be used"),
+        ("import numpy\nparts = (numpy, 1)", "'numpy' may only be used"),
+        ("import random\nu = getattr(random, 'uniform')", "'random' may only be used"),
+        ("f = math", "'math' may only be used"),
+        ("import numpy\nnumpy.pi = 3", "may not change the module 'numpy'"),
+        # format strings and the other walkers of attribute names
+        ("f = '{0}'.format", "may only be called at once"),
+        ("f = getattr('{0.x}', 'format')", "use an f-string"),
+        ("'{0:{1.__class__}}'.format(1, ego)", "format fields"),
+        ("f = thing.Formatter()", "'.Formatter'"),
+        ("v = thing.get_field('0.x', (), {})", "'.get_field'"),
+        ("g = thing.attrgetter('x')", "'.attrgetter'"),
+        # what a script sees without importing: builtins, Scenic's language, the world model
+        ("p = pathlib.Path('x')", "the module 'pathlib'"),
+        ("ns = {}\nmodel(ns, 'os')", "model loader"),
+        ("r = File('x.npz')", "recorder to files"),
+        ("g = _Scenic_module_namespace['__builtins__']", "compiled internals"),
+        ("x = annotations", "'__future__'"),
+        ("x = new open", "the builtin 'open'"),
+        ("ego = new Car with __class__ 3", "property '__class__'"),
+        # a name is the script's own only where Python cannot see the builtin any more
+        ("x = dir\ndir = 3", "the builtin 'dir'"),
+        ("def f(open=open):\n    return open", "the builtin 'open'"),
+        ("y = [open for _ in [1] if (open := 1)]", "the builtin 'open'"),
+        ("dir = 3\ndel dir\nx = dir", "the builtin 'dir'"),
+        # a later star import rebinds a name (Scenic's CARLA actions export scipy's linalg)
+        (
+            "from numpy import linalg\nfrom scenic.simulators.carla.actions import *\n"
+            "n = linalg.norm([3, 4])",
+            "the module 'scipy.linalg'",
+        ),
+    ],
+)
+def test_refusals_by_identity(source: str, word: str) -> None:
+    refused = _refused(source)
+    assert refused and any(word in what for what in refused), refused
+
+
+@pytest.mark.parametrize(
+    "source",
+    [
+        "def f(type):\n    return type",
+        "dir = ego.heading\nturn = dir + 1",
+        "model = 'vehicle.tesla.model3'\nlabel = model",
+        "import math\ndef f(x):\n    return math.floor(x)",
+        "import scenic.domains.driving.roads\nkind = scenic.domains.driving.roads.ManeuverType",
+        "from scenic.simulators.carla.actions import *\nfrom numpy import linalg\n"
+        "n = linalg.norm([3, 4])",
+        "def f(x: Optional[float] = None) -> float:\n    return x or 0.0",
+        "car = Uniform(*blueprints.carModels)",
+        "import random\nr = random.Random(3).uniform(0, 1)",
+        "for _ in range(3):\n    pass",
+        "from numpy import random as nr\nx = nr.normal(0, 1)",
+        "total = sum(len(lane.centerline) for lane in network.lanes)",
+    ],
+)
+def test_legitimate_names_pass(source: str) -> None:
+    assert _refused(source) == []
+
+
+def test_identity_verdicts() -> None:
+    import enum
+
+    from scenic.syntax.veneer import Uniform
+
+    for refused in (
+        operator.attrgetter,
+        string.Formatter,
+        builtins.eval,
+        typing.get_type_hints,
+        enum,
+    ):
+        assert identity.problem(refused), refused
+    for allowed in (math.floor, numpy, numpy.sqrt, Uniform, len):
+        assert identity.problem(allowed) is None, allowed
+    assert identity.attribute_builtin(builtins.getattr) == "getattr"
+
+
+def test_model_lookup_runs_nothing(tmp_path: Path) -> None:
+    package = tmp_path / "hostile_model_pkg"
+    package.mkdir()
+    marker = tmp_path / "imported"
+    (package / "__init__.py").write_text(f"open({str(marker)!r}, 'w').close()\n")
+    (package / "world.py").write_text("")
+    sys.path.insert(0, str(tmp_path))
+    try:
+        assert module_exists("hostile_model_pkg.world")
+        assert not module_exists("hostile_model_pkg.world.x")
+        assert not module_exists("hostile_model_pkg.missing")
+        assert module_exists("os") and not module_exists("a..b")
+    finally:
+        sys.path.remove(str(tmp_path))
+    assert not marker.exists() and "hostile_model_pkg" not in sys.modules
+
+
+def test_model_refusal() -> None:
+    assert model_refusal("scenic.simulators.carla.model", 1, 1) is None
+    refusal = model_refusal("script.hostile.x", 4, 7)
+    assert refusal is not None and (refusal.line, refusal.column) == (4, 7)
+    assert "not a world model we know" in refusal.what
+
+
+@pytest.mark.slow
+def test_the_world_model_names_are_judged_as_scenic_binds_them() -> None:
+    """What the gate reads from the world models' text matches the namespace Scenic
+    really gives a script: every name bound to a refused object is refused bare."""
+    import scenic
+
+    from arise.maps.registry import MapRegistry
+
+    choice = MapRegistry(None).resolve("arise_straight")
+    probe = (
+        "model scenic.simulators.carla.model\nimport builtins as B\n"
+        "B.arise_probe = dict(globals())\nego = new Car on road\n"
+    )
+    scenic.scenarioFromString(
+        probe,
+        params={"map": choice.path, "carla_map": choice.name},
+        model="arise.validate.worldmodel.model",
+        mode2D=True,
+    )
+    namespace = vars(builtins).pop("arise_probe")
+    refused_objects = [
+        name
+        for name, value in namespace.items()
+        if name.isidentifier() and name not in ("B", "new", "require") and identity.problem(value)
+    ]
+    assert "pathlib" in refused_objects and "model" in refused_objects
+    for name in refused_objects:
+        assert _refused(f"x = {name}"), name
+
+
 def test_a_variable_may_share_a_module_name() -> None:
     assert _refused("code = 1\nutils = code + 1\nio = utils") == []
 
@@ -113,11 +274,12 @@ def test_a_variable_may_share_a_module_name() -> None:
 def test_token_fallback_for_text_that_does_not_parse() -> None:
     broken = (
         "model scenic.simulators.carla.model\nimport os\nego = Car at 3 4 5 (\n"
-        "open('x')\nrandom._os\n"
+        "open('x')\nrandom._os\nthing.getattr\n"
     )
     found = scan_tokens(broken)
-    assert [r.line for r in found] == [2, 4, 5]
+    assert [r.line for r in found] == [2, 4, 5, 6]
     assert "'os'" in found[0].what and "'open'" in found[1].what and "_os" in found[2].what
+    assert "'.getattr'" in found[3].what
 
 
 def test_refusal_positions_are_one_based() -> None:

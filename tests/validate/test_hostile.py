@@ -186,7 +186,7 @@ def prepare(entry: dict[str, Any], root: Path, listener: Listener) -> Case:
 
     script_text = fill((HOSTILE / f"{name}.scenic").read_text(encoding="utf-8"))
     assert SECRET_TEXT not in script_text, "a script must not quote the secret itself"
-    script = folder / f"{name}.scenic"
+    script = folder / entry.get("file_name", f"{name}.scenic")
     script.write_text(script_text, encoding="utf-8")
     for relative, content in (entry.get("files") or {}).items():
         beside(relative).write_text(fill(content), encoding="utf-8")

@@ -96,6 +96,9 @@ def _warm_up() -> None:
     import arise.validate.worldmodel.simulator  # noqa: F401
 
     _import_verifai()
+    from arise.validate import gate
+
+    gate.warm()  # what the gate's names resolve to, read once and inherited by every check
 
 
 def _import_verifai() -> None:
@@ -197,13 +200,11 @@ def _model_problem(
             "(add `model scenic.simulators.carla.model`)"
         )
     elif info.model not in KNOWN_MODELS:
-        import importlib.util
+        # Looked up without importing: find_spec('a.b') runs `a`, which can be the script
+        # itself (its folder is on sys.path), before the gate has read it.
+        from arise.validate.gate import module_exists
 
-        try:
-            found = importlib.util.find_spec(info.model) is not None
-        except (ImportError, ValueError):
-            found = False
-        if not found:
+        if not module_exists(info.model):
             raise _Failed(
                 Diagnostic(
                     stage=Stage.COMPILE,
