@@ -9,6 +9,7 @@ from pathlib import Path
 
 from arise.present.files import write_bytes_atomic, write_text_atomic
 from arise.present.source import TraceSource, map_file
+from arise.render.budget import bounded
 from arise.render.gif import encode_gif
 from arise.render.html import replay_html
 from arise.render.model import Scene
@@ -33,11 +34,14 @@ class ReplayFiles:
 
 
 def scene_for(source: TraceSource, map_dir: str | None = None) -> Scene:
-    """The drawable scene of a trace, with the outline of the map it ran on."""
+    """The drawable scene of a trace, with the outline of the map it ran on, within the
+    drawing budget (`arise.render.budget`: a bounded number of agents and poses)."""
     network = load_network(map_file(source.map, map_dir)) if source.map is not None else None
     simulation = source.simulation
-    return scene_of(
-        simulation.agents, simulation.collisions, simulation.timestep, source.title, network
+    return bounded(
+        scene_of(
+            simulation.agents, simulation.collisions, simulation.timestep, source.title, network
+        )
     )
 
 

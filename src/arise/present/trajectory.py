@@ -31,70 +31,105 @@ def osc_heading(scenic_heading: float) -> float:
     return round(angle, 4) + 0.0  # never -0.0
 
 
-#: Below this many points a segment's deviation is computed in Python: numpy's call
-#: overhead would dominate (a zigzag keeps every point and tests only tiny segments).
-_VECTOR_FROM = 48
+#: A segment is first extended one point at a time (in Python, cheap for a few points),
+#: then every end up to _WINDOW points on is measured at once (numpy); both find exactly
+#: where one-at-a-time extension stops. Longer segments gallop.
+_STEPWISE = 8
+_WINDOW = 40
+
+
+def _share(steps: np.ndarray, first: np.ndarray | float, span: np.ndarray) -> np.ndarray:
+    """How far along a uniformly timed segment each step is (0 for a segment of no time)."""
+    shape = np.broadcast(steps, span).shape
+    return np.divide(steps - first, span, out=np.zeros(shape), where=span != 0)
 
 
 class _Track:
-    """The points of a trace as arrays, and the deviation of any straight timed segment."""
+    """The points of a trace as arrays, and the deviation of straight timed segments."""
 
     def __init__(self, points: list[TracePoint]):
         self.points = points
+        self.last = len(points) - 1
         self.steps = np.fromiter((p.step for p in points), float, len(points))
         self.xs = np.fromiter((p.x for p in points), float, len(points))
         self.ys = np.fromiter((p.y for p in points), float, len(points))
         # Every three-point segment's deviation at once: on a jagged trace (noise, or a
-        # forged zigzag) most segments end there, and one Python call per point would not.
-        self.three_point = np.zeros(len(points))
+        # forged zigzag) most segments end there, and one numpy call per point would not.
+        self.three_point = [0.0] * len(points)
         if len(points) >= 3:
             steps, xs, ys = self.steps, self.xs, self.ys
-            span = steps[2:] - steps[:-2]
-            share = np.divide(
-                steps[1:-1] - steps[:-2], span, out=np.zeros_like(span), where=span != 0
-            )
+            share = _share(steps[1:-1], steps[:-2], steps[2:] - steps[:-2])
             x = xs[:-2] + (xs[2:] - xs[:-2]) * share
             y = ys[:-2] + (ys[2:] - ys[:-2]) * share
-            self.three_point[:-2] = np.hypot(xs[1:-1] - x, ys[1:-1] - y)
+            self.three_point[:-2] = np.hypot(xs[1:-1] - x, ys[1:-1] - y).tolist()
 
     def deviation(self, first: int, last: int) -> float:
         """The farthest any point between `first` and `last` is from where the uniformly
         timed segment between them puts it at its step."""
-        if last - first < _VECTOR_FROM:
-            return self._deviation_small(first, last)
         steps, xs, ys = self.steps, self.xs, self.ys
-        span = steps[last] - steps[first]
         inner = slice(first + 1, last)
-        share = (steps[inner] - steps[first]) / span if span else np.zeros(last - first - 1)
+        share = _share(steps[inner], steps[first], np.asarray(steps[last] - steps[first]))
         x = xs[first] + (xs[last] - xs[first]) * share
         y = ys[first] + (ys[last] - ys[first]) * share
-        return float(np.max(np.hypot(xs[inner] - x, ys[inner] - y)))
+        return float(np.max(np.hypot(xs[inner] - x, ys[inner] - y), initial=0.0))
 
-    def _deviation_small(self, first: int, last: int) -> float:
+    def _stepwise_end(self, start: int, tolerance: float) -> tuple[int, bool]:
+        """Where one-at-a-time extension from `start` stops, if it stops within _STEPWISE
+        points (True), else the last end tried, which holds (False)."""
         points = self.points
-        a, b = points[first], points[last]
-        span = b.step - a.step
-        worst = 0.0
-        for point in points[first + 1 : last]:
-            share = (point.step - a.step) / span if span else 0.0
-            x = a.x + (b.x - a.x) * share
-            y = a.y + (b.y - a.y) * share
-            worst = max(worst, math.hypot(point.x - x, point.y - y))
-        return worst
+        a = points[start]
+        end = start + 1
+        while end < min(start + _STEPWISE, self.last):
+            b = points[end + 1]
+            span = b.step - a.step
+            for point in points[start + 1 : end + 1]:
+                share = (point.step - a.step) / span if span else 0.0
+                x = a.x + (b.x - a.x) * share
+                y = a.y + (b.y - a.y) * share
+                if math.hypot(point.x - x, point.y - y) > tolerance:
+                    return end, True
+            end += 1
+        return end, end == self.last
+
+    def _window_end(self, start: int, tolerance: float) -> tuple[int, bool]:
+        """Where one-at-a-time extension from `start` stops, if it stops within _WINDOW
+        points (True), else the window's far end, which holds (False). Every end in the
+        window against every point before it: one array operation, not _WINDOW calls."""
+        top = min(start + _WINDOW, self.last)
+        ends = np.arange(start + _STEPWISE + 1, top + 1)  # nearer ends hold (stepwise)
+        if ends.size == 0:
+            return top, True
+        inner = np.arange(start + 1, top)
+        steps, xs, ys = self.steps, self.xs, self.ys
+        share = _share(steps[inner][None, :], steps[start], (steps[ends] - steps[start])[:, None])
+        x = xs[start] + (xs[ends] - xs[start])[:, None] * share
+        y = ys[start] + (ys[ends] - ys[start])[:, None] * share
+        gaps = np.hypot(xs[inner][None, :] - x, ys[inner][None, :] - y)
+        gaps[inner[None, :] >= ends[:, None]] = 0.0  # a point past an end is not its concern
+        failing = np.flatnonzero(gaps.max(axis=1) > tolerance)
+        if failing.size:
+            return int(ends[failing[0]]) - 1, True
+        return top, top == self.last
 
     def segment_end(self, start: int, tolerance: float) -> int:
         """A far end of a segment from `start` that keeps every point within `tolerance`.
 
-        Galloping (ends 2, 4, 8, ... points on) and then bisecting between the last end
-        that held and the first that did not: O(L log L) for a segment of L points where
-        extending one point at a time was O(L^2). The end found is never nearer than the
-        first end one-at-a-time extension would stop at, and it always holds."""
-        last = len(self.points) - 1
-        if start + 2 <= last and self.three_point[start] > tolerance:
+        Within _WINDOW points, exactly where extending the segment one point at a time
+        stops. Past it, galloping (ends twice, four times, ... as far) and then bisecting
+        between the last end that held and the first that did not: O(L log L) for a
+        segment of L points where extending one point at a time was O(L^2). The end found
+        is never nearer than the one-at-a-time end, and it always holds."""
+        if start + 2 <= self.last and self.three_point[start] > tolerance:
             return start + 1
-        good, bad = start + 1, None  # two neighbouring points: nothing lies between them
-        while good < last:
-            probe = min(start + 2 * (good - start), last)
+        good, done = self._stepwise_end(start, tolerance)
+        if done:
+            return good
+        good, done = self._window_end(start, tolerance)
+        if done:
+            return good
+        bad = None
+        while good < self.last:
+            probe = min(start + 2 * (good - start), self.last)
             if self.deviation(start, probe) <= tolerance:
                 good = probe
             else:

@@ -10,6 +10,7 @@ from importlib import resources
 from typing import Any
 
 from arise.render import style
+from arise.render.budget import bounded
 from arise.render.model import Scene
 from arise.render.raster import notes
 
@@ -38,6 +39,7 @@ def scene_data(scene: Scene) -> dict[str, Any]:
         "title": scene.title,
         "timestep": scene.timestep,
         "steps": scene.steps,
+        "seconds": scene.seconds,
         "window": {
             "xmin": round(window.xmin, 2),
             "ymin": round(window.ymin, 2),
@@ -71,6 +73,9 @@ def scene_data(scene: Scene) -> dict[str, Any]:
 
 
 def replay_html(scene: Scene) -> str:
+    """The page of a scene, drawn within the budget (`budget.bounded`): a trace of
+    hundreds of agents and thousands of steps stays a page of a few megabytes."""
+    scene = bounded(scene)
     template = resources.files("arise.render").joinpath("replay_template.html").read_text("utf-8")
     # JSON inside <script>: no "<", ">" or "&" may reach the HTML parser as such.
     payload = (

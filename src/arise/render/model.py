@@ -8,6 +8,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from enum import StrEnum
+from typing import NamedTuple
 
 Point = tuple[float, float]
 
@@ -87,8 +88,10 @@ class Window:
         return self.xmin <= point[0] <= self.xmax and self.ymin <= point[1] <= self.ymax
 
 
-@dataclass(frozen=True)
-class Pose:
+class Pose(NamedTuple):
+    """Where an agent is at one step. A named tuple, not a dataclass: a trace holds up to
+    hundreds of thousands of them, and a tuple is made several times faster."""
+
     x: float
     y: float
     heading: float
@@ -130,6 +133,21 @@ class Scene:
     contacts: list[Contact] = field(default_factory=list)
     # The step the picture is about (closest approach or first contact), if any.
     focus_step: int | None = None
+    # What the picture leaves out (`arise.render.budget`): one line each for the legend.
+    notes: list[str] = field(default_factory=list)
+    # Steps of the trace per drawn step (1: every step is drawn), and then the trace's
+    # length: its last drawn step may stand for fewer than `drawn_every` steps.
+    drawn_every: int = 1
+    trace_seconds: float | None = None
+
+    @property
+    def seconds(self) -> float:
+        """How long the run lasted."""
+        return self.steps * self.timestep if self.trace_seconds is None else self.trace_seconds
+
+    def time_at(self, step: int) -> float:
+        """Seconds into the run at a (drawn) step."""
+        return min(step * self.timestep, self.seconds)
 
     def pose(self, track: Track, step: int) -> Pose:
         """The agent's pose at a step (its last one once its trace has ended)."""

@@ -15,10 +15,17 @@ from typing import Any
 import numpy as np
 
 from arise.render import style
+from arise.render.budget import bounded
 from arise.render.model import Area, LineKind, Pose, Role, Scene
 
 MAP_INCHES = (8.0, 6.0)  # the map axes; 4:3 like the window framing picks
 SIDE_INCHES = 2.5  # the legend panel right of the map: it covers no road
+
+
+def literal(text: str) -> str:
+    """Text matplotlib draws as written: a `$` would start mathtext, whose parser fails
+    on a name such as `a$\\x$` (an agent, a script or a title comes from the trace)."""
+    return text.replace("$", "\\$")
 
 
 def box_corners(pose: Pose, width: float, length: float) -> list[tuple[float, float]]:
@@ -72,7 +79,7 @@ def _figure(scene: Scene, dpi: int) -> tuple[Any, Any, Any]:
     ax.tick_params(labelsize=7)
     ax.set_xlabel("x (m)", fontsize=7)
     ax.set_ylabel("y (m)", fontsize=7)
-    fig.suptitle(scene.title, fontsize=10, x=0.05, ha="left", y=0.985)
+    fig.suptitle(literal(scene.title), fontsize=10, x=0.05, ha="left", y=0.985)
     return fig, ax, side
 
 
@@ -148,7 +155,11 @@ def _draw_legend(side: Any, scene: Scene, extra: list[str]) -> None:
     from matplotlib.patches import Patch
 
     handles: list[Any] = [
-        Patch(facecolor=style.ROLE_COLORS[t.role], edgecolor="none", label=style.legend_text(t))
+        Patch(
+            facecolor=style.ROLE_COLORS[t.role],
+            edgecolor="none",
+            label=literal(style.legend_text(t)),
+        )
         for t in scene.tracks
     ]
     if any(t.role is Role.EGO for t in scene.tracks):
@@ -161,7 +172,9 @@ def _draw_legend(side: Any, scene: Scene, extra: list[str]) -> None:
         )
     side.legend(handles=handles, loc="upper left", fontsize=7, frameon=False, borderaxespad=0)
     if extra:
-        side.text(0.0, 0.0, "\n".join(extra), fontsize=7, va="bottom", ha="left", color="#333333")
+        side.text(
+            0.0, 0.0, literal("\n".join(extra)), fontsize=7, va="bottom", ha="left", color="#333333"
+        )
 
 
 class _Agents:
@@ -172,6 +185,11 @@ class _Agents:
 
         self.scene = scene
         self.items = []
+        # The trails as arrays: a frame then shows a view of them, not a new list.
+        self.paths = [
+            (np.array([p.x for p in t.poses]), np.array([p.y for p in t.poses]))
+            for t in scene.tracks
+        ]
         for track in scene.tracks:
             color = style.ROLE_COLORS[track.role]
             (trail,) = ax.plot([], [], color=color, linewidth=1.6, animated=animated)
@@ -185,7 +203,7 @@ class _Agents:
             )
             ax.add_patch(body)
             text = ax.annotate(
-                style.label(track),
+                literal(style.label(track)),
                 (track.poses[0].x, track.poses[0].y),
                 xytext=(6, 6),
                 textcoords="offset points",
@@ -212,10 +230,9 @@ class _Agents:
 
     def show(self, step: int) -> list[Any]:
         artists: list[Any] = []
-        for track, trail, body, text in self.items:
+        for (track, trail, body, text), (xs, ys) in zip(self.items, self.paths, strict=True):
             pose = self.scene.pose(track, step)
-            upto = track.poses[: step + 1]
-            trail.set_data([p.x for p in upto], [p.y for p in upto])
+            trail.set_data(xs[: step + 1], ys[: step + 1])
             body.set_xy(box_corners(pose, track.width, track.length))
             text.xy = (pose.x, pose.y)
             artists.extend((trail, body, text))
@@ -225,18 +242,27 @@ class _Agents:
         return artists
 
 
+#: Contacts listed by name beside the picture; the rest are counted.
+MAX_LISTED_CONTACTS = 8
+
+
 def notes(scene: Scene) -> list[str]:
-    lines = [f"{scene.steps} steps of {scene.timestep:g} s"]
-    for contact in scene.contacts:
+    """The lines beside the picture: its length, what it leaves out, its contacts."""
+    lines = [f"{scene.steps} steps of {scene.timestep:g} s"] if scene.drawn_every == 1 else []
+    lines += scene.notes
+    for contact in scene.contacts[:MAX_LISTED_CONTACTS]:
         lines.append(
-            f"contact {contact.first}-{contact.second} at {contact.step * scene.timestep:.1f} s"
+            f"contact {contact.first}-{contact.second} at {scene.time_at(contact.step):.1f} s"
         )
+    if len(scene.contacts) > MAX_LISTED_CONTACTS:
+        lines.append(f"... and {len(scene.contacts) - MAX_LISTED_CONTACTS} more contacts")
     return lines
 
 
 def still_png(scene: Scene, dpi: int = 100) -> bytes:
     """The scene at its interaction (or its end): trails so far, the ego's start and path,
     every agent at that moment, contacts, and a legend beside the map."""
+    scene = bounded(scene)
     fig, ax, side = _figure(scene, dpi)
     _draw_roads(ax, scene)
     _draw_ego_start(ax, scene)
@@ -248,7 +274,7 @@ def still_png(scene: Scene, dpi: int = 100) -> bytes:
         else ("closest approach" if scene.focus_step is not None else "end")
     )
     _draw_legend(
-        side, scene, [f"shown at t = {step * scene.timestep:.1f} s ({moment})", *notes(scene)]
+        side, scene, [f"shown at t = {scene.time_at(step):.1f} s ({moment})", *notes(scene)]
     )
     out = io.BytesIO()
     fig.savefig(out, format="png", dpi=dpi)
@@ -256,7 +282,8 @@ def still_png(scene: Scene, dpi: int = 100) -> bytes:
 
 
 def frames(scene: Scene, stride: int, dpi: int = 60) -> Iterator[np.ndarray]:
-    """One RGB image every `stride` steps, from step 0 to the last step."""
+    """One RGB image every `stride` steps, from step 0 to the last step. Give it a scene
+    within the drawing budget (`budget.bounded`): each frame redraws every agent."""
     fig, ax, side = _figure(scene, dpi)
     _draw_roads(ax, scene)
     _draw_ego_start(ax, scene)
@@ -268,7 +295,6 @@ def frames(scene: Scene, stride: int, dpi: int = 60) -> Iterator[np.ndarray]:
     canvas = fig.canvas
     canvas.draw()
     background = canvas.copy_from_bbox(fig.bbox)
-    total = scene.steps * scene.timestep
     steps = list(range(0, scene.steps + 1, stride))
     if steps[-1] != scene.steps:
         steps.append(scene.steps)
@@ -276,6 +302,6 @@ def frames(scene: Scene, stride: int, dpi: int = 60) -> Iterator[np.ndarray]:
         canvas.restore_region(background)
         for artist in agents.show(step):
             ax.draw_artist(artist)
-        clock.set_text(f"t = {step * scene.timestep:.1f} s\nof {total:.1f} s")
+        clock.set_text(f"t = {scene.time_at(step):.1f} s\nof {scene.seconds:.1f} s")
         side.draw_artist(clock)
         yield np.asarray(canvas.buffer_rgba())[:, :, :3].copy()
