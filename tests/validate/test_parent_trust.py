@@ -146,7 +146,7 @@ def _point(**changes: Any) -> dict[str, Any]:
         ),
         _facts(events=[{"step": 1, "payload": {"nested": "dict"}}]),
         _facts(events=[{"step": 1}] * 10_001),
-        _facts(params={"weather": "x" * 5000}),
+        _facts(params={"weather": "x" * (MAX_MESSAGE + 1)}),
         _facts(unknown_field=1),
     ],
     ids=[
@@ -455,3 +455,8 @@ def test_simulation_facts_of_a_real_shape_pass(tmp_path: Path) -> None:
         )
     )
     assert facts.agents[0].trajectory[-1].step == 20
+    # A map without junctions is infinitely far from one: that is no gap, not a number.
+    agent = _agent(junction_gap=math.inf)
+    assert SimulationFacts.model_validate(_facts(agents=[agent])).agents[0].junction_gap is None
+    with pytest.raises(ValidationError):
+        SimulationFacts.model_validate(_facts(agents=[_agent(junction_gap=math.nan)]))

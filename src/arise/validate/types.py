@@ -14,7 +14,14 @@ from __future__ import annotations
 from enum import StrEnum
 from typing import Annotated
 
-from pydantic import BaseModel, ConfigDict, Field, StringConstraints, model_validator
+from pydantic import (
+    BaseModel,
+    ConfigDict,
+    Field,
+    StringConstraints,
+    field_validator,
+    model_validator,
+)
 
 from arise.limits import (
     MAX_AGENTS,
@@ -43,13 +50,14 @@ __all__ = ["MapChoice"]  # re-exported: results carry the registry's choice
 Coordinate = Annotated[float, Field(allow_inf_nan=False, ge=-MAX_MAGNITUDE, le=MAX_MAGNITUDE)]
 Magnitude = Annotated[float, Field(allow_inf_nan=False, ge=0, le=MAX_MAGNITUDE)]
 Step = Annotated[int, Field(ge=0, le=MAX_STEPS)]
+PointCount = Annotated[int, Field(ge=0, le=MAX_TRACE_POINTS)]
 Count = Annotated[int, Field(ge=0, le=2**31)]
 Name = Annotated[str, StringConstraints(max_length=MAX_NAME)]
 # An agent, its class or behavior: identifiers (names a Python class can have).
 Identifier = Annotated[str, StringConstraints(pattern=r"^\w{1,128}$")]
 Note = Annotated[str, StringConstraints(max_length=MAX_NOTE)]
 Message = Annotated[str, StringConstraints(max_length=MAX_MESSAGE)]
-Notes = Annotated[list[Note], Field(max_length=MAX_WARNINGS)]
+Notes = Annotated[list[Message], Field(max_length=MAX_WARNINGS)]
 EventValue = (
     Annotated[bool, Field(strict=True)]
     | Annotated[int, Field(strict=True)]
@@ -196,20 +204,27 @@ class AgentTrace(Strict):
     # The class name of the behavior it ran (`AdversaryBehavior` marks our adversary).
     behavior: Identifier | None = None
     # Steps at which the agent was inside a junction of the map.
-    intersection_steps: Step = 0
-    # Metres from its first position to the nearest junction (None: no road network).
+    intersection_steps: PointCount = 0
+    # Metres from its first position to the nearest junction (None: no road network, or
+    # a network without junctions).
     junction_gap: Magnitude | None = None
     # Moves into a neighbouring lane of the same road (None: no road network to tell).
-    lane_changes: Step | None = None
+    lane_changes: PointCount | None = None
     # Every move across a lane boundary outside junctions, in order (same-direction lane
     # changes and moves into and out of the oncoming lanes).
     lane_change_log: list[LaneChange] = Field(default_factory=list, max_length=MAX_TRACE_POINTS)
     # Steps spent in a lane that runs against the agent's travel, outside junctions.
-    opposite_lane_steps: Step | None = None
+    opposite_lane_steps: PointCount | None = None
     # It moved back across a lane boundary within a few seconds of crossing it, i.e. it
     # wove (a controller fault or an erratic driver), not a deliberate lane change.
     weaving: bool | None = None
     trajectory: list[TracePoint] = Field(default_factory=list, max_length=MAX_TRACE_POINTS)
+
+    @field_validator("junction_gap", mode="before")
+    @classmethod
+    def _no_junction_is_no_gap(cls, value: object) -> object:
+        """A map without junctions is infinitely far from one: no gap, as no network."""
+        return None if isinstance(value, float) and value == float("inf") else value
 
 
 class Collision(Strict):
@@ -235,7 +250,7 @@ class SimulationFacts(Strict):
     timestep: Annotated[float, Field(allow_inf_nan=False, gt=0, le=MAX_TIMESTEP)]
     # Scenic's TerminationType name (e.g. timeLimit, terminatedByMonitor).
     termination_type: Annotated[str, StringConstraints(pattern=r"^\w{1,64}$")]
-    termination_reason: Note
+    termination_reason: Message
     agents: list[AgentTrace] = Field(max_length=MAX_AGENTS)
     collisions: list[Collision] = Field(
         default_factory=list, max_length=MAX_AGENTS * (MAX_AGENTS - 1) // 2
@@ -243,7 +258,7 @@ class SimulationFacts(Strict):
     ego_pairs: list[EgoPairFacts] = Field(default_factory=list, max_length=MAX_AGENTS)
     events: list[Event] = Field(default_factory=list, max_length=MAX_EVENTS)
     # Global parameters of the scene that ran (weather, OPT_* values), as text.
-    params: dict[Name, Note] = Field(default_factory=dict, max_length=MAX_PARAMS)
+    params: dict[Name, Message] = Field(default_factory=dict, max_length=MAX_PARAMS)
 
     @model_validator(mode="after")
     def _bounded_in_total(self) -> SimulationFacts:
