@@ -209,7 +209,6 @@ class Judgement:
 # ------------------------------------------------------------------------------ the prompt
 
 _COMMENT = re.compile(r"^\s*#")
-_INLINE_COMMENT = re.compile(r"\s+#[^'\"]*$")
 _HEADER_NOISE = re.compile(r"^\s*(model\s|param\s+map\s*=)")
 
 
@@ -233,8 +232,19 @@ def compact_script(text: str) -> str:
             continue
         if _COMMENT.match(line) or _HEADER_NOISE.match(line):
             continue
-        kept.append(_INLINE_COMMENT.sub("", line))
+        kept.append(_without_inline_comment(line))
     return "\n".join(kept)
+
+
+def _without_inline_comment(line: str) -> str:
+    """`line` without a trailing `  # comment` (a `#` after space, no quote after it).
+    String scans: the regular expression for it backtracked quadratically on a long run
+    of spaces, and a script is untrusted text."""
+    last_quote = max(line.rfind("'"), line.rfind('"'))
+    at = line.find("#", last_quote + 1)
+    while at >= 0 and (at == 0 or not line[at - 1].isspace()):
+        at = line.find("#", at + 1)
+    return line if at < 0 else line[:at].rstrip()
 
 
 def input_problem(description: str, script_text: str) -> str | None:

@@ -203,7 +203,7 @@ def compose(
         if (
             component is Component.REQUIREMENTS
             and terminate_after is not None
-            and not any(re.search(r"^\s*terminate\b", e.snippet, re.M) for e in chosen)
+            and not any(re.search(r"^[^\S\n]*terminate\b", e.snippet, re.M) for e in chosen)
         ):
             body.append(f"terminate after {terminate_after:g} seconds")
         lines += write_section(component.section, body)

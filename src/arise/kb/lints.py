@@ -45,15 +45,19 @@ SCENIC2_CREATION = re.compile(
     re.M,
 )
 SCENIC2_FORMS = {
+    # `[^\S\n]*`, not `\s*`: indentation within the line; `\s*` ran on across blank lines
+    # from every line start, quadratic in a snippet of many blank lines.
     re.compile(
-        r"^\s*import\s+scenic\.simulators\.carla\.(actions|behaviors)\b", re.M
+        r"^[^\S\n]*import\s+scenic\.simulators\.carla\.(actions|behaviors)\b", re.M
     ): "imports CARLA actions/behaviors by hand (Scenic 2 style; the model brings them)",
-    re.compile(r"^\s*model\s", re.M): "has a `model` line: only the HEADER names the model",
-    re.compile(r"^\s*param\s+(map|carla_map)\b", re.M): "sets the map: only the HEADER does",
+    re.compile(r"^[^\S\n]*model\s", re.M): "has a `model` line: only the HEADER names the model",
+    re.compile(r"^[^\S\n]*param\s+(map|carla_map)\b", re.M): "sets the map: only the HEADER does",
 }
-PARAM_DECL = re.compile(r"^\s*param\s+([A-Za-z_]\w*)\s*=", re.M)
+PARAM_DECL = re.compile(r"^[^\S\n]*param\s+([A-Za-z_]\w*)\s*=", re.M)
 PARAM_READ = re.compile(r"\bglobalParameters\.([A-Za-z_]\w*)")
-TOP_ASSIGN = re.compile(r"^([A-Za-z_]\w*)\s*(?::[^=]*)?=(?!=)", re.M)
+# An annotation ends at its line: `[^=]*` ran on to the end of the snippet from every
+# line that starts `name:`, quadratic in a snippet of many such lines.
+TOP_ASSIGN = re.compile(r"^([A-Za-z_]\w*)\s*(?::[^=\n]*)?=(?!=)", re.M)
 TOP_DEF = re.compile(r"^(?:behavior|monitor|def|scenario)\s+([A-Za-z_]\w*)\s*\(", re.M)
 ADVERSARY_BEHAVIOR = re.compile(r"^behavior\s+AdversaryBehavior\s*\(\s*\)\s*:", re.M)
 ADVERSARY_OBJECT = re.compile(r"^adversary\s*=\s*new\s+\{\{ADVERSARY_CLASS\}\}", re.M)

@@ -27,8 +27,10 @@ NORMAL_SPREAD = 2.0
 #: Decimals a continuous value keeps: the fixed script holds exactly what was run.
 DECIMALS = 4
 
-_PARAM_LINE = re.compile(r"^param\s+([A-Za-z_]\w*)\s*=\s*(.+?)\s*$")
-_CONSTANT_LINE = re.compile(r"^([A-Za-z_]\w*)\s*=\s*(.+?)\s*$")
+# Possessive spaces and a greedy value that ends at its last non-space: linear on a line
+# of any length (a lazy value before `\s*$` backtracked quadratically on inner spaces).
+_PARAM_LINE = re.compile(r"^param\s+([A-Za-z_]\w*)\s*+=\s*+(.*\S)")
+_CONSTANT_LINE = re.compile(r"^([A-Za-z_]\w*)\s*+=\s*+(.*\S)")
 
 
 class ParamKind(StrEnum):
