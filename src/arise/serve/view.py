@@ -31,6 +31,8 @@ MAX_REPORT_BYTES = 8 * 1024 * 1024
 MAX_SCRIPT_BYTES = 1024 * 1024
 #: Attempts read back for line origins (a run has max_repairs + 1; the default is 11).
 MAX_ATTEMPTS = 64
+#: Facts and actors shown of a spec (a real one has a few dozen).
+MAX_ITEMS = 1000
 #: Beyond this many lines a script gets no sections and no line origins (both grow
 #: faster than the text; a generated script has a few hundred lines).
 MAX_DIFF_LINES = 5000
@@ -176,7 +178,7 @@ def spec_view(report: dict[str, Any]) -> dict[str, Any] | None:
     if not isinstance(spec, dict):
         return None
     facts = []
-    for raw in spec.get("grounding") or []:
+    for raw in _list(spec.get("grounding"), MAX_ITEMS):
         try:
             fact = GroundedFact.model_validate(raw)
         except ValidationError:
@@ -191,7 +193,7 @@ def spec_view(report: dict[str, Any]) -> dict[str, Any] | None:
             }
         )
     actors = []
-    for raw in spec.get("actors") or []:
+    for raw in _list(spec.get("actors"), MAX_ITEMS):
         try:
             actors.append(Actor.model_validate(raw).describe())
         except ValidationError:
