@@ -8,6 +8,7 @@ from __future__ import annotations
 
 from arise.evaluate.judge import compact_script
 from arise.evaluate.search.space import find_free_params
+from arise.generate.assemble import apply_params
 from arise.kb.lints import PARAM_DECL, SCENIC2_FORMS, top_level_names
 from arise.validate.diagnostics import rejections_from_log
 
@@ -46,3 +47,10 @@ def test_an_overlap_reason_with_a_long_word_names_its_creation_line() -> None:
     )
     rejections = rejections_from_log(log, script)
     assert [(r.reason[:8], r.line) for r in rejections] == [("11111111", None), ("unnamed ", 2)]
+
+
+def test_tuned_params_are_found_after_long_runs_of_spaces() -> None:
+    spaces = " " * LIMIT
+    script = f"param OPT_speed = Range(5,{spaces}9){spaces}\n\nparam OPT_gap = 3\n"
+    tuned = apply_params(script, {"OPT_speed": "7"})
+    assert tuned == f"param OPT_speed = 7{spaces}\n\nparam OPT_gap = 3\n"

@@ -21,7 +21,9 @@ from arise.llm.base import BaseProvider
 from arise.llm.types import Message
 from arise.prompts import load
 
-_PARAM_LINE = re.compile(r"^param\s+(OPT_[A-Z0-9_]+)\s*=\s*(.+?)\s*$", re.M)
+# The value ends at its line's last non-space (possessive spaces, no lazy value before
+# `\s*$`, which backtracked quadratically on a long run of spaces in a KB snippet).
+_PARAM_LINE = re.compile(r"^param\s+(OPT_[A-Z0-9_]+)\s*+=\s*+(.*\S)", re.M)
 _NUMBER = r"-?\d+(?:\.\d+)?"
 _VALUE = re.compile(rf"^\s*(?:({_NUMBER})|Range\(\s*({_NUMBER})\s*,\s*({_NUMBER})\s*\))\s*$")
 MAX_STRETCH = 2.0  # a tuned value may be at most this factor outside the default's range
