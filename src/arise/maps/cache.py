@@ -44,9 +44,11 @@ _known: dict[tuple[int, int, int, int], str] = {}
 
 
 def maps_root() -> Path:
+    """The cache's map folder, as a real path (so its entries compare equal to their own
+    resolved paths in `trusted_entry`)."""
     root = cache_dir() / "maps"
     root.mkdir(parents=True, exist_ok=True)
-    return root
+    return root.resolve()
 
 
 def _mib(size: int) -> str:
@@ -165,7 +167,7 @@ def trusted_entry(path: str | os.PathLike[str]) -> Path | None:
     digest, reached without symbolic links; else None. Only such a map's `.snet` may be
     loaded (Scenic unpickles it)."""
     given = Path(os.path.abspath(path))
-    root = maps_root().resolve()
+    root = maps_root()
     try:
         real = given.resolve(strict=True)
     except (OSError, RuntimeError):
