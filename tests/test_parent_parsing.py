@@ -51,6 +51,6 @@ def test_an_overlap_reason_with_a_long_word_names_its_creation_line() -> None:
 
 def test_tuned_params_are_found_after_long_runs_of_spaces() -> None:
     spaces = " " * LIMIT
-    script = f"param OPT_speed = Range(5,{spaces}9){spaces}\n\nparam OPT_gap = 3\n"
-    tuned = apply_params(script, {"OPT_speed": "7"})
-    assert tuned == f"param OPT_speed = 7{spaces}\n\nparam OPT_gap = 3\n"
+    script = f"param OPT_SPEED = Range(5,{spaces}9){spaces}\n\nparam OPT_GAP = 3\n"
+    tuned = apply_params(script, {"OPT_SPEED": "7"})
+    assert tuned == f"param OPT_SPEED = 7{spaces}\n\nparam OPT_GAP = 3\n"
