@@ -16,6 +16,8 @@ from typer.testing import CliRunner
 from arise import terminal
 from arise.cli import AriseGroup, app
 from arise.errors import AriseError
+from arise.validate import cli as validate_cli
+from arise.validate.types import CheckResult, Diagnostic, Rejection, Stage
 
 OSC52 = "\x1b]52;c;SGVsbG8=\x07"  # writes "Hello" to the clipboard
 CLEAR = "\x1b[2J\x1b[H"  # clears the screen
@@ -135,3 +137,34 @@ def test_a_diagnostic_excerpt_with_escapes_and_markup_prints_escaped(tmp_path: P
     assert run.returncode == 1, run.stderr
     assert "\x1b" not in run.stdout + run.stderr
     assert '> 3 | x = "\\x1b]52;c;SGVsbG8=\\x07[/x]\\x1b[2J\\x1b[H" +' in run.stdout
+
+
+def test_a_forged_diagnostic_prints_escaped_and_cut_without_the_highlighter(
+    capsys: pytest.CaptureFixture[str],
+) -> None:
+    # A script's forged result: every field of the diagnostic at its schema's limit, full
+    # of what rich's highlighter matches (numbers, IPs, paths) and of escapes and markup.
+    # Highlighted, a 250 KB message took minutes; here it is cut to MAX_SHOWN.
+    filler = "1.2.3.4 /etc/x 0x1f [/x] " * 2600  # 65,000 characters
+    result = CheckResult(
+        ok=False,
+        script=f"forged{OSC52}.scenic",
+        diagnostic=Diagnostic(
+            stage=Stage.SIMULATE,
+            error_type="Forged[/x]",
+            message=HOSTILE + filler[: 64 * 1024 - len(HOSTILE)],
+            excerpt=f"> 3 | {CLEAR}",
+            hint=f"[link=https://example.com]{HOSTILE}",
+            section="A\x1b[2J",
+            line=3,
+            rejections=[Rejection(reason=f"{OSC52}[/x]", count=2)],
+        ),
+        warnings=[f"{CLEAR}OK"],
+    )
+    validate_cli._print_result(result)
+    out = capsys.readouterr().out
+    assert "\x1b" not in out and "\x07" not in out and "\r" not in out
+    assert "Forged[/x]" in out and "section A\\x1b[2J" in out
+    assert "more characters)" in out
+    assert len(out) < 5 * terminal.MAX_SHOWN
+    assert "\\x1b[2J\\x1b[HOK" in out and "rejected 2x: \\x1b]52;c;SGVsbG8=\\x07[/x]" in out
