@@ -19,6 +19,7 @@ from typing import Any
 from pydantic import ValidationError
 
 from arise.atomic import write_bytes_atomic
+from arise.limits import MAX_AGENTS, MAX_STEPS
 from arise.maps.registry import MapError, MapRegistry
 from arise.validate.carla_server import unreachable_reason
 from arise.validate.map_cache import MapPreparationError, prepare_map
@@ -195,8 +196,9 @@ def _violation(
         Stage.SIMULATE,
         "ProtocolViolation",
         f"the worker's result broke the result schema ({problem})",
-        "a script that writes on the validator's result channel forges its result; "
-        "remove that code.",
+        "either the script wrote a result of its own on the validator's channel, or its "
+        f"run exceeded the bounds every result is held to (at most {MAX_AGENTS} agents and "
+        f"{MAX_STEPS} steps; arise/limits.py)",
     )
     result.map, result.model = choice, model
     try:  # the pool's own stamp, from before the script ran
