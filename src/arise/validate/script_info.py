@@ -93,18 +93,20 @@ def _first_quote(text: str, start: int = 0) -> int:
     return min(found) if found else -1
 
 
-def _fill_placeholders(value: str, strings: dict[str, str]) -> str:
-    """`{name}` replaced by the string `name` was assigned; unknown fields stay as written."""
+def _filled(value: str, strings: dict[str, str]) -> str | None:
+    """`value` with each `{name}` replaced by the string `name` was assigned, or None if a
+    field stays unfilled (an unknown name, a stray brace): then it is no literal path."""
     out: list[str] = []
     position = 0
     while (brace := value.find("{", position)) >= 0:
         name = _WORD.match(value, brace + 1)
-        if name is not None and value.startswith("}", name.end()):
-            out += [value[position:brace], strings.get(name.group(), value[brace : name.end() + 1])]
-            position = name.end() + 1
-        else:
-            out.append(value[position : brace + 1])
-            position = brace + 1
+        if name is None or not value.startswith("}", name.end()):
+            return None
+        filled = strings.get(name.group())
+        if filled is None or "{" in filled:
+            return None
+        out += [value[position:brace], filled]
+        position = name.end() + 1
     out.append(value[position:])
     return "".join(out)
 
@@ -118,8 +120,7 @@ def _resolve_string(expression: str, strings: dict[str, str]) -> str | None:
     closing = _first_quote(expression, opening + 1) if opening >= 0 else -1
     if closing < 0:
         return None
-    value = _fill_placeholders(expression[opening + 1 : closing], strings)
-    return None if "{" in value else value
+    return _filled(expression[opening + 1 : closing], strings)
 
 
 def _is_town(value: str) -> bool:
