@@ -12,6 +12,7 @@ from rich.table import Table
 from arise import terminal
 from arise.kb.loader import ENV_VAR, KnowledgeBase, load_kb
 from arise.kb.schema import Component
+from arise.limits import MAX_STEPS
 
 console = terminal.console()
 errors = terminal.console(stderr=True)
@@ -152,7 +153,9 @@ def validate_command(
     ] = None,
     workers: Annotated[int, typer.Option(help="validator workers in parallel")] = 2,
     seed: Annotated[int, typer.Option(help="random seed for every script")] = 1,
-    steps: Annotated[int, typer.Option(help="simulation steps per script")] = 200,
+    steps: Annotated[
+        int, typer.Option(min=1, max=MAX_STEPS, help="simulation steps per script")
+    ] = 200,
     as_json: Annotated[bool, typer.Option("--json", help="print the report as JSON")] = False,
     show_scripts: Annotated[bool, typer.Option(help="print each composed script")] = False,
 ) -> None:

@@ -18,7 +18,7 @@ from pydantic import ValidationError
 from arise.generate.facts import GroundedFact
 from arise.generate.spec import Actor
 from arise.present.source import FAILED_MARKER
-from arise.sections import Section, find_sections
+from arise.sections import find_sections, sections_by_line
 from arise.serve.safefs import EntryKind, Folder, Refused, parse_json
 from arise.serve.store import bundle_of
 from arise.validate.types import Diagnostic, SandboxReport
@@ -76,16 +76,6 @@ def _final_script(folder: Folder) -> str:
     return text
 
 
-def line_sections(sections: list[Section], count: int) -> list[str | None]:
-    """The innermost section of each of `count` lines (what `section_of_line` says of
-    each line, in one pass over the sections rather than one per line)."""
-    names: list[str | None] = [None] * count
-    for section in sections:  # outer before inner: an inner section overwrites
-        for number in range(section.first_line, min(section.last_line, count) + 1):
-            names[number - 1] = section.name
-    return names
-
-
 def script_view(folder: Folder, report: dict[str, Any]) -> dict[str, Any]:
     """The final script's lines, each with its section and the attempt that wrote it."""
     script = _final_script(folder)
@@ -109,8 +99,9 @@ def script_view(folder: Folder, report: dict[str, Any]) -> dict[str, Any]:
             and all(s.count("\n") <= MAX_DIFF_LINES for s in scripts)
         ):
             origins = line_origins(scripts)
-    found = find_sections(script) if len(lines_of_script) <= MAX_DIFF_LINES else []
-    sections_of = line_sections(found, len(lines_of_script))
+    small = len(lines_of_script) <= MAX_DIFF_LINES
+    found = find_sections(script) if small else []
+    sections_of = sections_by_line(script) if small else [None] * len(lines_of_script)
     lines = []
     for number, text in enumerate(lines_of_script, start=1):
         origin = origins[number - 1] if len(origins) >= number else 0

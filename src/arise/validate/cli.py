@@ -14,6 +14,7 @@ from rich.panel import Panel
 from rich.table import Table
 
 from arise import terminal
+from arise.limits import MAX_STEPS
 from arise.maps.registry import MapError, MapRegistry
 from arise.validate.api import check
 from arise.validate.pool import WorkerPool
@@ -158,7 +159,9 @@ def check_command(
         str | None,
         typer.Option(help="Folder of extra .xodr maps, e.g. CARLA towns (env ARISE_MAP_DIR)."),
     ] = None,
-    steps: Annotated[int, typer.Option(help="Simulation steps to run.")] = 300,
+    steps: Annotated[
+        int, typer.Option(min=1, max=MAX_STEPS, help="Simulation steps to run.")
+    ] = 300,
     spawn_attempts: Annotated[
         int, typer.Option(help="Scenes to try when a spawn fails or a simulation is rejected.")
     ] = 15,

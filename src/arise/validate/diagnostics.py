@@ -16,6 +16,7 @@ from pathlib import Path
 from types import TracebackType
 from typing import TypedDict
 
+from arise.limits import MAX_NOTE, MAX_REJECTIONS
 from arise.sections import section_of_line
 from arise.validate.script_info import ScriptInfo
 from arise.validate.types import Diagnostic, Rejection, Stage
@@ -302,10 +303,11 @@ def rejections_from_log(log: str, text: str) -> list[Rejection]:
         reasons[match.group(1).strip()] += 1
     lines = text.splitlines()
     found = []
-    for reason, count in reasons.most_common():
+    for reason, count in reasons.most_common(MAX_REJECTIONS):
+        reason = reason[:MAX_NOTE]  # a requirement's text can be a whole script line
         line_match = _REQUIREMENT_LINE.search(reason)
         line = int(line_match.group(1)) if line_match else _creation_line(text, reason)
-        code = lines[line - 1].strip() if line and 0 < line <= len(lines) else None
+        code = lines[line - 1].strip()[:MAX_NOTE] if line and 0 < line <= len(lines) else None
         found.append(
             Rejection(
                 reason=reason,

@@ -276,7 +276,7 @@ class CheckOptions(BaseModel):
 
     simulator: Simulator = Simulator.OFFLINE
     map_dir: str | None = None
-    steps: int = 300
+    steps: Annotated[int, Field(ge=1, le=MAX_STEPS)] = 300
     spawn_attempts: int = 15
     sample_iterations: int = 500
     seed: int | None = None

@@ -25,6 +25,7 @@ from arise.evaluate.search.runner import (
 )
 from arise.evaluate.search.sampler import SamplerKind
 from arise.evaluate.search.store import SearchStore, TrialRecord
+from arise.limits import MAX_STEPS
 from arise.validate import CheckOptions
 
 console = terminal.console()
@@ -103,7 +104,9 @@ def search_command(
             "-o", "--out", help="Output folder (default: RUN_DIR/search or out/search-NAME)."
         ),
     ] = None,
-    steps: Annotated[int, typer.Option(help="Simulation steps per trial.")] = 300,
+    steps: Annotated[
+        int, typer.Option(min=1, max=MAX_STEPS, help="Simulation steps per trial.")
+    ] = 300,
     timeout: Annotated[float, typer.Option(help="Seconds per trial before it is stopped.")] = 60.0,
     spawn_attempts: Annotated[
         int,
