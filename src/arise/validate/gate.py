@@ -223,6 +223,8 @@ class _Walker(ast.NodeVisitor):
     scopes: list[frozenset[str]] = field(default_factory=list)
     statement: int = 0
     memo: dict[int, Values] = field(default_factory=dict)
+    # Nodes the walker makes itself (kept alive: `memo` and `parents` key nodes by id).
+    made: list[ast.AST] = field(default_factory=list)
 
     def refuse(self, node: ast.AST, what: str) -> None:
         line = getattr(node, "lineno", 1) or 1
@@ -514,6 +516,7 @@ class _Walker(ast.NodeVisitor):
             # `new Car` calls the class named `Car`: the name is judged like any other.
             name = ast.Name(id=str(getattr(node, "className", "")), ctx=ast.Load())
             ast.copy_location(name, node)
+            self.made.append(name)
             self.parents[id(name)] = node
             self.visit_Name(name)
         elif kind in ("WithSpecifier", "PropertyDef"):

@@ -415,13 +415,17 @@ def _container_problem(value: Any, depth: int) -> str | None:
 
 
 def _origin(value: object) -> str:
-    if isinstance(value, type | FunctionType | BuiltinFunctionType | MethodType):
-        origin = getattr(value, "__module__", None)
-        owner = getattr(value, "__self__", None)
-        if origin is None and owner is not None and not is_module(owner):
-            return _origin(owner)
-        return str(origin)
-    return str(type(value).__module__)
+    """The module that defines a function or class (for an instance: its class's)."""
+    try:
+        if isinstance(value, type | FunctionType | BuiltinFunctionType | MethodType):
+            origin = getattr(value, "__module__", None)
+            owner = getattr(value, "__self__", None)
+            if origin is None and owner is not None and not is_module(owner):
+                return _origin(owner)
+            return str(origin)
+        return str(type(value).__module__)
+    except Exception:  # noqa: BLE001  (an object that hides where it comes from is refused)
+        return "<unknown>"
 
 
 def _trusted_callable_origin(origin: str) -> bool:
