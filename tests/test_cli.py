@@ -9,7 +9,7 @@ import typer
 from typer.testing import CliRunner
 
 from arise.cli import CRASH_EXIT, AriseGroup, app
-from arise.errors import AriseError
+from arise.errors import AriseError, Interrupted
 from arise.llm.types import ProviderUnavailable
 
 runner = CliRunner()
@@ -24,6 +24,11 @@ def mistake() -> None:
 @demo.command()
 def model() -> None:
     raise ProviderUnavailable("llamacpp: cannot reach the server")
+
+
+@demo.command()
+def stopped() -> None:
+    raise Interrupted("finished runs are saved; run the same command to resume")
 
 
 @demo.command()
@@ -42,6 +47,14 @@ def test_an_arise_error_is_one_line_with_its_exit_code() -> None:
     assert result.output.strip() == "error: the [file] x.scenic does not exist"
     result = runner.invoke(demo, ["model"])
     assert result.exit_code == 1 and "cannot reach" in result.output
+
+
+def test_an_interruption_is_said_as_one_and_exits_130() -> None:
+    result = runner.invoke(demo, ["stopped"])
+    assert result.exit_code == 130
+    assert result.output.strip() == (
+        "interrupted: finished runs are saved; run the same command to resume"
+    )
 
 
 def test_a_bug_writes_a_crash_report_instead_of_a_traceback(
@@ -77,12 +90,12 @@ def test_a_refused_description_exits_before_anything_loads(
     text: str, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:
     # No model, no knowledge base, no validator worker: the refusal is all the user waits for.
-    import arise.generate.cli as generate_cli
+    import arise.generate.batch as batch
 
     def no_generator(*_: object, **__: object) -> None:
         raise AssertionError("a refused description built a Generator")
 
-    monkeypatch.setattr(generate_cli, "Generator", no_generator)
+    monkeypatch.setattr(batch, "Generator", no_generator)
     result = runner.invoke(app, ["generate", text, "--out", str(tmp_path / "out")])
     assert result.exit_code == 2
     assert "description is empty" in result.output or "driving scenario" in result.output

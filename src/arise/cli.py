@@ -1,9 +1,10 @@
 """Command line: a thin layer; every command is one call into the library.
 
-Errors are handled once, here, for every command (sub-commands included): an `AriseError`
-is printed on one line and exits with its code (2, or 1 for a model that failed); any other
-exception is a bug in arise, so its traceback goes to a crash report file under the user
-cache and the user is told where it is.
+Errors are handled once, here, for every command (sub-commands included): no command
+prints an error itself. An `AriseError` is printed on one line and exits with its code
+(2, or 1 for a model that failed, 130 for an interrupted run); any other exception is a
+bug in arise, so its traceback goes to a crash report file under the user cache and the
+user is told where it is.
 """
 
 from __future__ import annotations
@@ -23,7 +24,7 @@ from typer.core import TyperGroup
 
 from arise import __version__, terminal
 from arise.doctor import DOCTOR_HELP, doctor_command
-from arise.errors import AriseError
+from arise.errors import AriseError, Interrupted
 from arise.evaluate.cli import BENCH_HELP, REPORT_HELP, bench_command, report_command
 from arise.evaluate.judge_cli import JUDGE_HELP, judge_command
 from arise.evaluate.search.cli import SEARCH_HELP, search_command
@@ -67,7 +68,9 @@ class AriseGroup(TyperGroup):
         except (typer.Exit, typer.Abort, typer.TyperException):  # usage errors, exits
             raise
         except AriseError as error:
-            errors.print(terminal.text(("error:", "red"), " ", str(error)))
+            if isinstance(error, Interrupted):
+                errors.print()  # past the "^C" the terminal echoed
+            errors.print(terminal.text((f"{error.label}:", "red"), " ", str(error)))
             ctx.exit(error.exit_code)
         except BrokenPipeError:  # `arise ... | head` closed our output: not a crash
             _silence_stdout()

@@ -14,3 +14,13 @@ class AriseError(Exception):
     #: The command line's exit code for it: 2 is a usage error (the input can be fixed);
     #: a package whose errors mean "the work failed" (e.g. the model) sets 1.
     exit_code: int = 2
+    #: The word the command line prints before the message.
+    label: str = "error"
+
+
+class Interrupted(AriseError):
+    """The user stopped a long command (Ctrl-C); the message says what was kept. Not a
+    mistake, so not labelled one; exit code 130, as a shell reports SIGINT."""
+
+    exit_code = 130
+    label = "interrupted"

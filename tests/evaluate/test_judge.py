@@ -12,7 +12,7 @@ import pytest
 from typer.testing import CliRunner
 
 from arise.cli import app
-from arise.evaluate import judge_cli
+from arise.evaluate import judge_pair
 from arise.evaluate.judge import (
     CRITERIA,
     MAX_TOKENS,
@@ -327,7 +327,7 @@ def test_cli_provider_failures_exit_1(monkeypatch: pytest.MonkeyPatch, tmp_path:
     def down(*args: object, **kwargs: object) -> BaseProvider:
         raise ProviderUnavailable("llamacpp: cannot reach http://127.0.0.1:8080/v1; start it")
 
-    monkeypatch.setattr(judge_cli, "get_provider", down)
+    monkeypatch.setattr(judge_pair, "get_provider", down)
     result = invoke(PEDESTRIAN, script, "--provider", "llamacpp")
     assert result.exit_code == 1 and "cannot reach" in result.output
     assert "Traceback" not in result.output

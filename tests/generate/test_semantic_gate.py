@@ -81,7 +81,7 @@ def _captured_options(monkeypatch: pytest.MonkeyPatch, module: str, name: str) -
 def test_generate_turns_the_gate_off_with_no_semantic_gate(
     monkeypatch: pytest.MonkeyPatch, flag: list[str], expected: bool
 ) -> None:
-    seen = _captured_options(monkeypatch, "arise.generate.cli", "Generator")
+    seen = _captured_options(monkeypatch, "arise.generate.batch", "Generator")
     CliRunner().invoke(app, ["generate", "A pedestrian crosses in front of the ego.", *flag])
     [options] = seen
     assert isinstance(options, GenerateOptions) and options.semantic_gate is expected

@@ -145,7 +145,7 @@ def _run_cli(
     env["ARISE_CACHE_DIR"] = str(tmp_path / "cache")
     env.update(extra or {})
     return subprocess.run(
-        [sys.executable, "-m", "arise.llm", *args],
+        [sys.executable, "-m", "arise", "llm", *args],
         capture_output=True,
         text=True,
         env=env,
@@ -187,7 +187,7 @@ def test_cli_info_shows_key_state_not_values(tmp_path: Path) -> None:
     os.environ["OPENAI_API_KEY"] = env_key
     try:
         result = subprocess.run(
-            [sys.executable, "-m", "arise.llm", "info"],
+            [sys.executable, "-m", "arise", "llm", "info"],
             capture_output=True,
             text=True,
             env={**os.environ, "COLUMNS": "200"},

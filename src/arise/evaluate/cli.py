@@ -10,31 +10,33 @@ from rich.progress import (
     BarColumn,
     MofNCompleteColumn,
     Progress,
+    TaskID,
     TextColumn,
     TimeElapsedColumn,
     TimeRemainingColumn,
 )
 
 from arise import terminal
-from arise.evaluate.prompt_file import read_prompts
-from arise.evaluate.records import RunRecord
-from arise.evaluate.report import write_report
-from arise.evaluate.runner import (
-    EXECUTORS,
-    BenchConfig,
-    judge_missing,
-    pending,
-    recheck,
-    run_bench,
-    unjudged,
+from arise.evaluate.benchmark import (
+    BenchEvent,
+    BenchPlanned,
+    JudgingStarted,
+    Rechecked,
+    ReportEvent,
+    ReportRequest,
+    RunJudged,
+    RunSearched,
+    RunsStarted,
+    bench_report,
+    benchmark,
+    check_executor,
 )
-from arise.evaluate.store import BenchStore
+from arise.evaluate.prompt_file import read_prompts
+from arise.evaluate.runner import BenchConfig
 from arise.generate.options import GenerateOptions, Mode
 from arise.llm.cli_options import ModelOption, ProviderOption, ReplayOption
-from arise.validate.types import confinement_summary
 
 console = terminal.console()
-errors = terminal.console(stderr=True)
 
 BENCH_HELP = """Run the generator over a prompt file and measure it the paper's way.
 
@@ -115,7 +117,7 @@ def bench_command(
     ray_address: Annotated[
         str | None, typer.Option(help="Ray cluster to join (default: a local Ray instance).")
     ] = None,
-    max_repairs: Annotated[int, typer.Option(help="Repair budget per run.")] = 10,
+    max_repairs: Annotated[int, typer.Option(help="Repair budget per run.", min=0)] = 10,
     seed: Annotated[int, typer.Option(help="Base seed; run i uses seed + i.")] = 0,
     limit: Annotated[int | None, typer.Option(help="Only the first N prompts.")] = None,
     judge: Annotated[
@@ -148,9 +150,7 @@ def bench_command(
         ),
     ] = False,
 ) -> None:
-    if executor not in EXECUTORS:
-        errors.print(f"[red]error:[/red] --executor is one of {', '.join(EXECUTORS)}")
-        raise typer.Exit(2)
+    check_executor(executor)  # before the prompts are read: ExecutorUnavailable, exit 2
     items = read_prompts(prompts)  # PromptFileError: one line, exit 2
     base = GenerateOptions(
         provider=provider,
@@ -175,80 +175,61 @@ def bench_command(
         judge_model=judge_model,
         ray_address=ray_address,
     )
-    with BenchStore(out / "bench.sqlite") as store:  # BenchStoreError: one line, exit 2
-        todo = pending(config, store)
-        total = len(todo) + len(store.done_keys())
-        console.print(
-            terminal.text(
-                f"{len(todo)} run(s) to do, {total - len(todo)} already in ",
-                terminal.name(out / "bench.sqlite"),
-            )
-        )
-        if judge:
-            console.print(f"{len(unjudged(config, store))} finished run(s) to judge first")
-        try:
-            if judge:
-                _judge_with_bar(config, store, out)
-            _run_with_bar(config, store, out, len(todo))
-        except KeyboardInterrupt:
-            errors.print("\ninterrupted: finished runs are saved; run the same command to resume")
-            raise typer.Exit(130) from None
-        records = store.runs()
-        written = write_report(records, out / "report", store.meta())
-    executed = sum(r.ok for r in records)
+    with _BenchPrinter() as printer:
+        summary = benchmark(config, out, printer.on_event)  # Ctrl-C: Interrupted, exit 130
     console.print(
         terminal.text(
-            f"{executed} of {len(records)} runs executable; report: ", terminal.name(written[0])
+            f"{summary.executed} of {len(summary.records)} runs executable; report: ",
+            terminal.name(summary.report[0]),
         )
     )
-    console.print(
-        terminal.text("sandbox: ", confinement_summary([r.sandbox for r in records if r.ok]))
-    )
+    console.print(terminal.text("sandbox: ", summary.sandbox))
 
 
-def _judge_with_bar(config: BenchConfig, store: BenchStore, out: Path) -> None:
-    columns = [
-        TextColumn("judging"),
-        BarColumn(),
-        MofNCompleteColumn(),
-        TimeElapsedColumn(),
-        TextColumn("ETA"),
-        TimeRemainingColumn(),
-    ]
-    with Progress(*columns, console=console, disable=not console.is_terminal) as bar:
-        task = bar.add_task("judge", total=len(unjudged(config, store)))
+class _BenchPrinter:
+    """Prints a benchmark's events: a progress bar on a terminal (judging, then runs),
+    a line per judged or finished run elsewhere."""
 
-        def advance(record: RunRecord) -> None:
-            bar.update(task, advance=1)
+    def __init__(self) -> None:
+        self.bar: Progress | None = None
+        self.task: TaskID | None = None
+        self.executable = 0
+
+    def __enter__(self) -> _BenchPrinter:
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self._stop()
+
+    def on_event(self, event: BenchEvent) -> None:
+        if isinstance(event, BenchPlanned):
+            console.print(
+                terminal.text(
+                    f"{event.todo} run(s) to do, {event.done} already in ",
+                    terminal.name(event.database),
+                )
+            )
+            if event.to_judge is not None:
+                console.print(f"{event.to_judge} finished run(s) to judge first")
+        elif isinstance(event, JudgingStarted):
+            self._start("judging", event.total)
+        elif isinstance(event, RunsStarted):
+            self._start("runs", event.total)
+        elif isinstance(event, RunJudged):
+            self._advance()
             if not console.is_terminal:
-                scs = record.scs
+                scs = event.record.scs
                 console.print(
                     terminal.text(
                         "judged ",
-                        terminal.name(record.task.label()),
+                        terminal.name(event.record.task.label()),
                         f": SCS {'-' if scs is None else f'{scs:.2f}'}",
                     )
                 )
-
-        judge_missing(config, store, out, advance)
-
-
-def _run_with_bar(config: BenchConfig, store: BenchStore, out: Path, count: int) -> None:
-    columns = [
-        TextColumn("{task.description}"),
-        BarColumn(),
-        MofNCompleteColumn(),
-        TimeElapsedColumn(),
-        TextColumn("ETA"),
-        TimeRemainingColumn(),
-    ]
-    with Progress(*columns, console=console, disable=not console.is_terminal) as bar:
-        task = bar.add_task("runs", total=count)
-        ok = [0]
-
-        def advance(record: RunRecord) -> None:
-            ok[0] += record.ok
-            bar.update(task, advance=1, description=f"runs ({ok[0]} executable)")
+        else:
+            record = event.record
+            self.executable += record.ok
+            self._advance(f"runs ({self.executable} executable)")
             if not console.is_terminal:
                 console.print(
                     terminal.text(
@@ -259,7 +240,29 @@ def _run_with_bar(config: BenchConfig, store: BenchStore, out: Path, count: int)
                     )
                 )
 
-        run_bench(config, store, out, advance)
+    def _start(self, description: str, total: int) -> None:
+        self._stop()
+        self.bar = Progress(
+            TextColumn("{task.description}"),
+            BarColumn(),
+            MofNCompleteColumn(),
+            TimeElapsedColumn(),
+            TextColumn("ETA"),
+            TimeRemainingColumn(),
+            console=console,
+            disable=not console.is_terminal,
+        )
+        self.bar.start()
+        self.task = self.bar.add_task(description, total=total)
+
+    def _advance(self, description: str | None = None) -> None:
+        if self.bar is not None and self.task is not None:
+            self.bar.update(self.task, advance=1, description=description)
+
+    def _stop(self) -> None:
+        if self.bar is not None:
+            self.bar.stop()
+            self.bar = None
 
 
 def report_command(
@@ -294,46 +297,31 @@ def report_command(
         ),
     ] = 0,
 ) -> None:
-    if not database.is_file():
-        errors.print(
-            terminal.text(("error:", "red"), " no such database: ", terminal.name(database))
-        )
-        raise typer.Exit(2)
-    with BenchStore(database) as store:  # BenchStoreError: one line, exit 2
-        if recheck_runs:
-            count = recheck(store, map_dir=map_dir)
-            console.print(
-                terminal.text(
-                    f"re-checked {count} executed run(s); sandbox: ",
-                    confinement_summary([r.sandbox for r in store.runs() if r.ok]),
-                )
-            )
-        if search_trials:
-            from arise.evaluate.search.bench import search_runs
-
-            count = search_runs(
-                store,
-                search_trials,
-                on_record=lambda r: console.print(
-                    terminal.text(
-                        "searched ",
-                        terminal.name(r.task.label()),
-                        ": critical"
-                        if (r.criticality or {})["search"]["critical"]
-                        else ": not critical",
-                        f" within {search_trials} trials",
-                    )
-                ),
-            )
-            console.print(f"searched {count} executed run(s)")
-        records, meta = store.runs(), store.meta()
-    if not records:
-        errors.print(
-            terminal.text(
-                ("error:", "red"), " ", terminal.name(database), " holds no finished runs yet"
-            )
-        )
-        raise typer.Exit(2)
-    written = write_report(records, out or database.parent / "report", meta, title)
-    for path in written:
+    request = ReportRequest(
+        database=database,
+        out=out,
+        title=title,
+        recheck=recheck_runs,
+        map_dir=map_dir,
+        search_trials=search_trials,
+    )
+    for path in bench_report(request, _print_report_event):
         console.print(terminal.text(terminal.name(path)))
+
+
+def _print_report_event(event: ReportEvent) -> None:
+    if isinstance(event, Rechecked):
+        console.print(
+            terminal.text(f"re-checked {event.count} executed run(s); sandbox: ", event.sandbox)
+        )
+    elif isinstance(event, RunSearched):
+        console.print(
+            terminal.text(
+                "searched ",
+                terminal.name(event.record.task.label()),
+                ": critical" if event.critical else ": not critical",
+                f" within {event.trials} trials",
+            )
+        )
+    else:
+        console.print(f"searched {event.count} executed run(s)")

@@ -4,23 +4,14 @@ from __future__ import annotations
 
 import json
 from pathlib import Path
-from typing import Annotated, Any
+from typing import Annotated
 
 import typer
 from rich.table import Table
 
 from arise import terminal
-from arise.errors import AriseError
-from arise.evaluate.judge import (
-    CRITERIA,
-    DEFAULT_WEIGHTS,
-    Consistency,
-    Judgement,
-    consistency,
-    input_problem,
-    judge_script,
-    parse_weights,
-)
+from arise.evaluate.judge import CRITERIA, DEFAULT_WEIGHTS, Consistency, Judgement, parse_weights
+from arise.evaluate.judge_pair import JudgeRequest, judge_pair
 from arise.llm.cli_options import (
     ModelOption,
     NoCacheOption,
@@ -28,7 +19,6 @@ from arise.llm.cli_options import (
     RecordOption,
     ReplayOption,
 )
-from arise.llm.registry import get_provider
 
 console = terminal.console()
 errors = terminal.console(stderr=True)
@@ -57,53 +47,6 @@ Examples:
 
   arise judge - out/ --weights adversary_type=2,behavior=1.5 --provider gemini
 """
-
-
-class UserMistake(AriseError):
-    """A bad argument: the command line prints it on one line and exits 2."""
-
-
-def load_pair(description: str, script: Path) -> tuple[str, str, Path]:
-    """(description, script text, script file) from the arguments; a generation folder
-    supplies the script and, for DESCRIPTION "-", the description."""
-    if script.is_dir():
-        scenic = script / "scenario.scenic"
-        if not scenic.is_file():
-            raise UserMistake(
-                f"{script} is a folder without scenario.scenic; give a .scenic "
-                "file or a folder written by `arise generate`"
-            )
-        if description.strip() == "-":
-            report = script / "report.json"
-            try:
-                data = json.loads(report.read_text(encoding="utf-8"))
-            except FileNotFoundError:
-                raise UserMistake(
-                    f"{script} has no report.json to take the description from; "
-                    "give the description instead of '-'"
-                ) from None
-            except (json.JSONDecodeError, UnicodeDecodeError) as error:
-                raise UserMistake(f"{report} is not JSON ({error})") from None
-            found = data.get("description") if isinstance(data, dict) else None
-            if not isinstance(found, str) or not found.strip():
-                raise UserMistake(f"{report} has no description; give it instead of '-'")
-            description = found
-        script = scenic
-    elif description.strip() == "-":
-        raise UserMistake(
-            "'-' takes the description from report.json, which only a folder "
-            "written by `arise generate` has; give the description in words"
-        )
-    if not script.is_file():
-        raise UserMistake(f"no such script: {script}")
-    try:
-        text = script.read_text(encoding="utf-8")
-    except (OSError, UnicodeDecodeError) as error:
-        raise UserMistake(f"cannot read {script}: {error}") from None
-    problem = input_problem(description, text)
-    if problem:
-        raise UserMistake(problem)
-    return description, text, script
 
 
 def judge_command(
@@ -138,40 +81,28 @@ def judge_command(
 ) -> None:
     # Mistakes (UserMistake, WeightsError) and model failures (LLMError) are AriseErrors:
     # the command line prints them on one line (exit 2 and 1).
-    if repeat < 1:
-        raise UserMistake("--repeat must be at least 1")
-    if temperature < 0:
-        raise UserMistake("--temperature must be >= 0")
-    chosen = parse_weights(weights)
-    text_description, script_text, script = load_pair(description, script)
-
-    overrides: dict[str, Any] = {"model": model} if model else {}
-    llm = get_provider(
-        provider, cache=False if no_cache else None, record=record, replay=replay, **overrides
+    judged = judge_pair(
+        JudgeRequest(
+            description=description,
+            script=script,
+            repeat=repeat,
+            weights=parse_weights(weights),
+            provider=provider,
+            model=model,
+            temperature=temperature,
+            seed=seed,
+            cache=False if no_cache else None,
+            record=record,
+            replay=replay,
+        )
     )
-    with llm:
-        if repeat == 1:
-            result: Judgement | Consistency = judge_script(
-                text_description,
-                script_text,
-                llm,
-                temperature=temperature,
-                seed=seed,
-                weights=chosen,
-            )
-        else:
-            result = consistency(
-                text_description,
-                script_text,
-                llm,
-                repeat=repeat,
-                temperature=temperature,
-                seed=seed,
-                weights=chosen,
-            )
-
+    result = judged.result
     if as_json:
-        payload = {"description": text_description, "script": str(script), **result.as_dict()}
+        payload = {
+            "description": judged.description,
+            "script": str(judged.script),
+            **result.as_dict(),
+        }
         # ASCII: a C1 control or a bidi override in a reason stays an escape in the output
         print(json.dumps(payload, indent=2))
         return

@@ -4,18 +4,24 @@ from __future__ import annotations
 
 import json
 from pathlib import Path
-from typing import Annotated, Any
+from typing import Annotated
 
 import typer
 from rich.live import Live
 from rich.text import Text
 
 from arise import terminal
+from arise.generate.batch import (
+    BatchEvent,
+    BatchRequest,
+    DescriptionError,
+    RunProgress,
+    RunStarted,
+    run_batch,
+)
 from arise.generate.events import AttemptChecked, ProgressEvent, StageStarted
-from arise.generate.extract import check_description
 from arise.generate.options import GenerateOptions, Mode
-from arise.generate.pipeline import Generator, slug
-from arise.generate.run import GateVerdict, Generation, RunStatus
+from arise.generate.run import GateVerdict, Generation
 from arise.llm.cli_options import (
     ModelOption,
     NoCacheOption,
@@ -27,7 +33,6 @@ from arise.llm.prefix_store import default_store_dir
 from arise.validate.types import Simulator, confinement_summary
 
 console = terminal.console()
-errors = terminal.console(stderr=True)
 
 GENERATE_HELP = """Turn traffic-scenario descriptions into executable Scenic 3 scripts.
 
@@ -45,32 +50,6 @@ Examples:
 
   arise generate "..." --no-semantic-gate   # keep the first script that runs, as it is
 """
-
-
-def _read_descriptions(text: str | None, file: Path | None) -> list[tuple[str, str]]:
-    """(id, description) pairs from the argument and/or a .txt (one per line) or .jsonl file."""
-    found: list[tuple[str, str]] = []
-    if text is not None:
-        found.append((slug(text), text))
-    if file is not None:
-        if not file.is_file():
-            raise typer.BadParameter(f"no such file: {file}", param_hint="--file")
-        for number, line in enumerate(file.read_text(encoding="utf-8").splitlines(), 1):
-            if not line.strip() or line.lstrip().startswith("#"):
-                continue
-            if file.suffix == ".jsonl":
-                try:
-                    row = json.loads(line)
-                except json.JSONDecodeError as error:
-                    raise typer.BadParameter(
-                        f"{file}:{number}: not JSON ({error.msg})", param_hint="--file"
-                    ) from None
-                description = str(row.get("description", ""))
-                ident = str(row.get("id") or f"{number:03d}-{slug(description)}")
-            else:
-                description, ident = line.strip(), f"{number:03d}-{slug(line)}"
-            found.append((ident, description))
-    return found
 
 
 def generate_command(
@@ -94,8 +73,8 @@ def generate_command(
             min=1,
         ),
     ] = 10,
-    max_repairs: Annotated[int, typer.Option(help="Repair budget per run.")] = 10,
-    spawn_attempts: Annotated[int, typer.Option(help="Scenes tried per check.")] = 15,
+    max_repairs: Annotated[int, typer.Option(help="Repair budget per run.", min=0)] = 10,
+    spawn_attempts: Annotated[int, typer.Option(help="Scenes tried per check.", min=1)] = 15,
     simulator: Annotated[Simulator, typer.Option(help="offline or carla.")] = Simulator.OFFLINE,
     mode: Annotated[Mode, typer.Option(help="arise, single-pass or chatscene.")] = Mode.ARISE,
     map_dir: Annotated[str | None, typer.Option(help="Extra maps (e.g. CARLA towns).")] = None,
@@ -117,15 +96,6 @@ def generate_command(
     ] = True,
     as_json: Annotated[bool, typer.Option("--json", help="Print the reports as JSON.")] = False,
 ) -> None:
-    descriptions = _read_descriptions(description, file)
-    if not descriptions:
-        errors.print("[red]error:[/red] give a description or --file")
-        raise typer.Exit(2)
-    single = len(descriptions) == 1 and count == 1
-    refusal = check_description(descriptions[0][1]) if single and not as_json else None
-    if refusal:  # said before the model, the KB or a validator worker is loaded
-        errors.print(terminal.text(("error:", "red"), " ", refusal))
-        raise typer.Exit(2)
     options = GenerateOptions(
         mode=mode,
         provider=provider,
@@ -142,51 +112,109 @@ def generate_command(
         replay=replay,
         semantic_gate=semantic_gate,
     )
-    runs: list[Generation] = []
-    with Generator(options) as generator:  # bad KB or map folders raise AriseError
-        for ident, text in descriptions:
-            for index in range(count):
-                folder = out if single else out / (ident if count == 1 else f"{ident}/run-{index}")
-                generator.reconfigure(
-                    options.model_copy(update={"run_index": index, "seed": seed + index})
-                )
-                run = _run_with_progress(generator, text, folder, quiet=as_json)
-                runs.append(run)
-                if not as_json:
-                    mark = ("✔", "green") if run.ok else ("✘", "red")
-                    console.print(
-                        terminal.text(mark, " ", terminal.name(folder), ": ", run.summary())
-                    )
-                    if run.usage.prefixes_built:
-                        console.print(
-                            terminal.text(
-                                "  prefix store: first run, kept the model's state after "
-                                f"{run.usage.prefixes_built} fixed prompt prefix(es) in "
-                                f"{default_store_dir()}; later runs load it instead of "
-                                "reading them again"
-                            )
-                        )
-                    labels = [
-                        a.check.sandbox.label if a.check and a.check.sandbox else None
-                        for a in run.attempts
-                        if a.check is not None
-                    ]
-                    if labels:
-                        console.print(terminal.text("  sandbox: ", confinement_summary(labels)))
-                    _print_grounding(run)
-                    for note in run.contradictions:
-                        console.print(terminal.text("  ", ("contradiction:", "yellow"), " ", note))
-                    _print_gate(run)
+    request = BatchRequest(
+        description=description,
+        file=file,
+        out=out,
+        count=count,
+        options=options,
+        refuse_early=not as_json,
+    )
+    with _Printer(quiet=as_json) as printer:
+        batch = run_batch(request, printer.on_event)
     if as_json:
-        payload = [run.report() for run in runs]
-        print(json.dumps(payload[0] if single else payload, indent=2, default=str))
-    elif not single:
-        done = sum(run.ok for run in runs)
-        console.print(f"\n{done} of {len(runs)} runs produced an executable script")
-    if single and runs[0].status is RunStatus.REFUSED:
-        errors.print(terminal.text(("error:", "red"), " ", runs[0].message))
-        raise typer.Exit(2)
-    raise typer.Exit(0 if all(run.ok for run in runs) else 1)
+        payload = [done.run.report() for done in batch.runs]
+        print(json.dumps(payload[0] if batch.single else payload, indent=2, default=str))
+    elif not batch.single:
+        console.print(f"\n{batch.executed} of {len(batch.runs)} runs produced an executable script")
+    if batch.refusal is not None:
+        raise DescriptionError(batch.refusal)
+    raise typer.Exit(0 if batch.ok else 1)
+
+
+class _Printer:
+    """Prints a batch's events: a live status line per run on a terminal, then what the
+    run made of the description."""
+
+    def __init__(self, quiet: bool):
+        self.quiet = quiet
+        self.live: Live | None = None
+        self.folder = Path()
+        self.stage, self.attempt, self.error = "starting", 0, ""
+
+    def __enter__(self) -> _Printer:
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self._stop()
+
+    def on_event(self, event: BatchEvent) -> None:
+        if self.quiet:
+            return
+        if isinstance(event, RunStarted):
+            self._start(event.folder)
+        elif isinstance(event, RunProgress):
+            self._progress(event.event)
+        else:
+            self._stop()
+            _print_run(event.folder, event.run)
+
+    def _start(self, folder: Path) -> None:
+        self.folder, self.stage, self.attempt, self.error = folder, "starting", 0, ""
+        if console.is_terminal:
+            self.live = Live(self._render(), console=console, transient=True, refresh_per_second=4)
+            self.live.start()
+
+    def _progress(self, event: ProgressEvent) -> None:
+        if self.live is None:
+            return
+        if isinstance(event, StageStarted):
+            self.stage = event.stage.value
+            if event.attempt is not None:
+                self.attempt = event.attempt
+        elif isinstance(event, AttemptChecked):
+            self.attempt = event.index
+            self.error = event.error or ""
+        self.live.update(self._render())
+
+    def _stop(self) -> None:
+        if self.live is not None:
+            self.live.stop()
+            self.live = None
+
+    def _render(self) -> Text:
+        line = terminal.text(terminal.name(self.folder), ": ", self.stage)
+        if self.attempt:
+            line.append(f" (attempt {self.attempt})")
+        if self.error:
+            error = terminal.shown(self.error, 90, one_line=True)
+            line.append_text(terminal.text(("  last error: " + error, "yellow")))
+        return line
+
+
+def _print_run(folder: Path, run: Generation) -> None:
+    mark = ("✔", "green") if run.ok else ("✘", "red")
+    console.print(terminal.text(mark, " ", terminal.name(folder), ": ", run.summary()))
+    if run.usage.prefixes_built:
+        console.print(
+            terminal.text(
+                "  prefix store: first run, kept the model's state after "
+                f"{run.usage.prefixes_built} fixed prompt prefix(es) in "
+                f"{default_store_dir()}; later runs load it instead of "
+                "reading them again"
+            )
+        )
+    labels = [
+        a.check.sandbox.label if a.check and a.check.sandbox else None
+        for a in run.attempts
+        if a.check is not None
+    ]
+    if labels:
+        console.print(terminal.text("  sandbox: ", confinement_summary(labels)))
+    _print_grounding(run)
+    for note in run.contradictions:
+        console.print(terminal.text("  ", ("contradiction:", "yellow"), " ", note))
+    _print_gate(run)
 
 
 def _print_grounding(run: Generation) -> None:
@@ -227,32 +255,3 @@ def _print_gate(run: Generation) -> None:
             cost,
         )
     )
-
-
-def _run_with_progress(generator: Generator, text: str, folder: Path, quiet: bool) -> Generation:
-    if quiet or not console.is_terminal:
-        return generator.generate(text, folder)
-    state: dict[str, Any] = {"stage": "starting", "attempt": 0, "error": ""}
-
-    def render() -> Text:
-        line = terminal.text(terminal.name(folder), ": ", state["stage"])
-        if state["attempt"]:
-            line.append(f" (attempt {state['attempt']})")
-        if state["error"]:
-            error = terminal.shown(state["error"], 90, one_line=True)
-            line.append_text(terminal.text(("  last error: " + error, "yellow")))
-        return line
-
-    with Live(render(), console=console, transient=True, refresh_per_second=4) as live:
-
-        def update(event: ProgressEvent) -> None:
-            if isinstance(event, StageStarted):
-                state["stage"] = event.stage.value
-                if event.attempt is not None:
-                    state["attempt"] = event.attempt
-            elif isinstance(event, AttemptChecked):
-                state["attempt"] = event.index
-                state["error"] = event.error or ""
-            live.update(render())
-
-        return generator.generate(text, folder, update)

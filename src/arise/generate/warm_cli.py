@@ -11,8 +11,8 @@ from typing import Annotated
 import typer
 
 from arise import terminal
-from arise.generate.prefixes import fixed_prefixes
-from arise.llm.types import LLMError, PrefixUse
+from arise.generate.warm import clear_prefixes, warm_prefixes
+from arise.llm.types import PrefixUse
 
 WARM_HELP = (
     "Evaluate the fixed prompt prefixes (system prompts, examples) of the generator's "
@@ -39,30 +39,20 @@ def warm_command(
     ] = None,
     clear: Annotated[bool, typer.Option("--clear", help="Delete every stored prefix.")] = False,
 ) -> None:
-    from arise.llm.local import LocalProvider
-    from arise.llm.registry import get_provider
-
-    llm = get_provider("local", cache=False, model_path=model_path)
-    backend = llm.unwrap()
-    if not isinstance(backend, LocalProvider):  # a config that redefines "local"
-        raise LLMError("the prefix store is for the embedded model (kind = local)")
-    store = backend.store
-    if store is None:
-        raise LLMError("the prefix store is off (ARISE_PREFIX_STORE=off or prefix_store = false)")
     if clear:
-        removed = store.clear()
+        removed, root = clear_prefixes(model_path)
         console.print(
-            terminal.text(f"removed {removed} stored prefix(es) from ", terminal.name(store.root))
+            terminal.text(f"removed {removed} stored prefix(es) from ", terminal.name(root))
         )
         return
     with console.status("evaluating the fixed prompt prefixes..."):
-        outcomes = backend.warm(fixed_prefixes())
-    for name, outcome in outcomes.items():
+        warmed = warm_prefixes(model_path)  # LLMError: one line, exit 1
+    for name, outcome in warmed.outcomes.items():
         console.print(
             terminal.text(
                 f"{name}: {outcome.tokens} tokens, {_SAID[outcome.use]} ({outcome.seconds:.1f} s)"
             )
         )
-    for note in store.discarded:
+    for note in warmed.discarded:
         console.print(terminal.text(("rebuilt", "yellow"), " ", note))
-    console.print(terminal.text("store: ", store.describe()))
+    console.print(terminal.text("store: ", warmed.store))

@@ -12,6 +12,7 @@ from rich.table import Table
 from arise import terminal
 from arise.kb.loader import ENV_VAR, KnowledgeBase, load_kb
 from arise.kb.schema import Component
+from arise.kb.select import find_entry, select_ids
 from arise.limits import MAX_STEPS
 
 console = terminal.console()
@@ -75,16 +76,7 @@ def show_command(
     entry_id: Annotated[str, typer.Argument(help="entry id")], kb_dirs: KbDirs = None
 ) -> None:
     """Show one entry: descriptions, interface and snippet."""
-    kb = _load(kb_dirs)
-    if entry_id not in kb:
-        close = [e.id for e in kb if entry_id.split(".")[-1] in e.id][:5]
-        errors.print(
-            terminal.text(
-                f"no entry {entry_id!r}" + (f"; did you mean {', '.join(close)}?" if close else "")
-            )
-        )
-        raise typer.Exit(2)
-    entry = kb.get(entry_id)
+    entry = find_entry(_load(kb_dirs), entry_id)  # UnknownEntry: one line, exit 2
     console.print(
         terminal.text(
             (terminal.name(entry.id), "bold"),
@@ -168,15 +160,7 @@ def validate_command(
     from arise.validate.types import confinement_summary
 
     kb = _load(kb_dirs)
-    only = [
-        e.id
-        for e in kb
-        if (component is None or e.component is component) and (not entry or e.id in entry)
-    ]
-    unknown = sorted(set(entry or ()) - set(kb.entries))
-    if unknown:
-        errors.print(terminal.text("no such entries: ", ", ".join(unknown)))
-        raise typer.Exit(2)
+    only = select_ids(kb, component, entry or ())  # UnknownEntry: one line, exit 2
 
     def progress(outcome: ScriptOutcome) -> None:
         if as_json:

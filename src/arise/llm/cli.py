@@ -1,22 +1,19 @@
 """``arise llm ...``: check which model answers, install the default model, show settings.
 
-Every user mistake (no key, server down, model missing) ends as one line on stderr and
-exit code 1, never a traceback.
+Every user mistake (no key, server down, model missing) is an `LLMError`: `arise`'s one
+error handler prints it as one line on stderr and exits 1, never a traceback.
 """
 
 from __future__ import annotations
 
-import functools
 import os
-from collections.abc import Callable
 from pathlib import Path
-from typing import Annotated, Any, TypeVar
+from typing import Annotated
 
 import typer
 
 from arise import terminal
 from arise.llm import model_files
-from arise.llm.types import LLMError
 
 app = typer.Typer(
     help="Language model providers: ping, install the local model, show settings.",
@@ -27,30 +24,12 @@ app = typer.Typer(
 out = terminal.console()
 err = terminal.console(stderr=True)
 
-F = TypeVar("F", bound=Callable[..., Any])
-
-
-def one_line_errors(func: F) -> F:
-    """Turn our own errors into one line and exit code 1."""
-
-    @functools.wraps(func)
-    def wrapper(*args: Any, **kwargs: Any) -> Any:
-        try:
-            return func(*args, **kwargs)
-        except LLMError as exc:
-            err.print(terminal.text(("error:", "red"), " ", str(exc)))
-            raise typer.Exit(1) from None
-
-    return wrapper  # type: ignore[return-value]
-
-
 ProviderOpt = Annotated[
     str | None, typer.Option("--provider", "-p", help="Provider name (default: settings).")
 ]
 
 
 @app.command()
-@one_line_errors
 def ping(
     provider: ProviderOpt = None,
     model: Annotated[str | None, typer.Option(help="Model name (hosted) or id.")] = None,
@@ -63,63 +42,31 @@ def ping(
     replay: Annotated[Path | None, typer.Option(help="Answer from this cassette.")] = None,
 ) -> None:
     """Send a one-word prompt and show which model answered and how fast (never cached)."""
-    from arise.llm.openai_compat import OpenAICompatProvider
-    from arise.llm.registry import get_provider
-    from arise.llm.retry import RetryPolicy
-    from arise.llm.structured import template
-    from arise.llm.types import user
+    from arise.llm.ping import ping as send_ping
 
-    llm = get_provider(
+    pong = send_ping(
         provider,
-        cache=False,
-        retry=RetryPolicy(attempts=2, base=0.5),  # a health check should answer fast
-        record=record,
-        replay=replay,
         model=model,
         base_url=base_url,
-        model_path=str(model_path) if model_path else None,
+        model_path=model_path,
         threads=threads,
+        record=record,
+        replay=replay,
     )
-    with llm:
-        reply = llm.complete([user(template("ping.txt").strip())], max_tokens=8)
-        served: list[str] = []
-        backend = llm.unwrap()
-        if isinstance(backend, OpenAICompatProvider):
-            served = backend.served_models()
-    usage = reply.usage
-    speed = ""
-    gen_s = reply.details.get("generation_seconds")
-    if gen_s:
-        speed = (
-            f", {reply.details.get('generated_tokens_evaluated', 0) / gen_s:.1f} tok/s generation"
-        )
-    extras = []
-    if "load_seconds" in reply.details:
-        extras.append(f"model load {reply.details['load_seconds']:.1f} s")
-    if reply.first_token_latency is not None:
-        extras.append(f"first token {reply.first_token_latency:.2f} s")
-    extras.append(
-        f"{usage.prompt_tokens} prompt + {usage.completion_tokens} completion tokens{speed}"
-    )
-    if served and reply.model not in served and len(served) <= 3:
-        # llama.cpp servers echo the requested name; say what is really loaded
-        extras.insert(0, f"server has {', '.join(served)}")
-    answer = " ".join(reply.text.split())[:60]
     out.print(
         terminal.text(
-            (terminal.name(llm.name), "bold"),
+            (terminal.name(pong.provider), "bold"),
             " (",
-            terminal.name(reply.model),
+            terminal.name(pong.reply.model),
             ") answered ",
-            repr(answer),
-            f" in {reply.latency:.2f} s ",
-            (f"({'; '.join(extras)})", "dim"),
+            repr(pong.answer()),
+            f" in {pong.reply.latency:.2f} s ",
+            (f"({'; '.join(pong.notes())})", "dim"),
         )
     )
 
 
 @app.command()
-@one_line_errors
 def ask(
     prompt: Annotated[str, typer.Argument(help="The user message.")],
     provider: ProviderOpt = None,
@@ -163,7 +110,6 @@ def ask(
 
 
 @app.command("install-model")
-@one_line_errors
 def install_model(
     force: Annotated[bool, typer.Option(help="Rebuild even if the file is there.")] = False,
 ) -> None:
@@ -183,7 +129,6 @@ def install_model(
 
 
 @app.command()
-@one_line_errors
 def info() -> None:
     """Show the config file, providers, keys found (never their values) and the local model."""
     from arise.llm.cache import ResponseCache, default_cache_path
@@ -238,7 +183,6 @@ def info() -> None:
 
 
 @app.command("cache-clear")
-@one_line_errors
 def cache_clear() -> None:
     """Delete every cached response."""
     from arise.llm.cache import ResponseCache, default_cache_path
@@ -250,11 +194,3 @@ def cache_clear() -> None:
     removed = store.clear()
     store.close()
     out.print(terminal.text(f"removed {removed} cached responses from {path}"))
-
-
-def main() -> None:
-    app(prog_name="arise llm")
-
-
-if __name__ == "__main__":
-    main()

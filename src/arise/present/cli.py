@@ -8,10 +8,9 @@ from typing import Annotated
 import typer
 
 from arise import terminal
-from arise.present.replay import write_replay
-from arise.present.source import TraceSource, load_trace
-from arise.present.tracefile import write_trace
-from arise.present.xosc import EgoMode, write_export
+from arise.present.source import TraceSource
+from arise.present.targets import export_target, replay_target
+from arise.present.xosc import EgoMode
 
 console = terminal.console()
 
@@ -66,12 +65,6 @@ MapDirOption = Annotated[
 ]
 
 
-def _out_dir(target: Path, out: Path | None) -> Path:
-    if out is not None:
-        return out
-    return target if target.is_dir() else target.with_suffix("")
-
-
 def _say_source(source: TraceSource) -> None:
     console.print(
         terminal.text(
@@ -92,11 +85,9 @@ def replay_command(
     ] = False,
     map_dir: MapDirOption = None,
 ) -> None:
-    source = load_trace(target, map_dir=map_dir)
-    _say_source(source)
-    folder = _out_dir(target, out)
-    write_trace(folder, source.saved())
-    files = write_replay(source, folder, still=png, map_dir=map_dir)
+    replayed = replay_target(target, out, still=png, map_dir=map_dir)
+    _say_source(replayed.source)
+    files = replayed.files
     for path in (files.gif, files.html, files.png):
         if path is not None:
             size = path.stat().st_size // 1024
@@ -114,11 +105,9 @@ def export_command(
     ] = EgoMode.REPLAY,
     map_dir: MapDirOption = None,
 ) -> None:
-    source = load_trace(target, map_dir=map_dir)
-    _say_source(source)
-    folder = _out_dir(target, out)
-    write_trace(folder, source.saved())
-    files = write_export(source, folder, ego, map_dir=map_dir)
+    exported = export_target(target, out, ego, map_dir=map_dir)
+    _say_source(exported.source)
+    files = exported.files
     console.print(
         terminal.text(
             "wrote ",

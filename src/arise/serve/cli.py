@@ -20,7 +20,7 @@ from arise.serve.config import (
     ServeConfig,
     default_runs_dir,
 )
-from arise.serve.errors import ServeError
+from arise.serve.launch import address, serve
 
 console = terminal.console()
 
@@ -82,16 +82,6 @@ def serve_command(
         MAX_QUEUED
     ),
 ) -> None:
-    try:
-        import uvicorn
-
-        from arise.serve.app import create_app, guarded
-    except ImportError as error:
-        raise ServeError(
-            f"arise serve needs the web packages ({error.name} is missing): "
-            "pip install 'arise[serve]' (make serve and make demo install them)"
-        ) from None
-
     if new_token and not token:
         token = secrets.token_urlsafe(24)
     if replay is not None and not Path(replay).is_file():
@@ -110,11 +100,11 @@ def serve_command(
         model=model,
         options=GenerateOptions(max_repairs=max_repairs, map_dir=map_dir),
     )
-    shown = f"[{host}]" if ":" in host else host
-    address = f"http://{shown}:{port}/" + (f"?token={token}" if token else "")
-    console.print(terminal.text("arise serve: open ", address))
-    console.print(terminal.text("runs are kept in ", terminal.name(config.runs_dir)))
-    if os.environ.get(TOKEN_ENV) and token == os.environ[TOKEN_ENV]:
-        console.print(terminal.text(f"(token from {TOKEN_ENV})"))
-    app = guarded(config, create_app(config))
-    uvicorn.run(app, host=host, port=port, log_level="warning", access_log=False)
+
+    def announce() -> None:
+        console.print(terminal.text("arise serve: open ", address(config)))
+        console.print(terminal.text("runs are kept in ", terminal.name(config.runs_dir)))
+        if os.environ.get(TOKEN_ENV) and token == os.environ[TOKEN_ENV]:
+            console.print(terminal.text(f"(token from {TOKEN_ENV})"))
+
+    serve(config, announce)  # missing web packages: ServeError, one line, exit 2

@@ -4,24 +4,22 @@ from __future__ import annotations
 
 import json
 import os
-from collections.abc import Callable
-from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
-from typing import Annotated, Any
+from typing import Annotated
 
 import typer
 from rich.panel import Panel
+from rich.status import Status
 from rich.table import Table
 
 from arise import terminal
 from arise.limits import MAX_STEPS
-from arise.maps.registry import MapError, MapRegistry
-from arise.validate.api import check
-from arise.validate.pool import WorkerPool
+from arise.maps.registry import MapRegistry
+from arise.validate.batch import CheckEvent, ScriptStage, ScriptStarted, check_scripts
+from arise.validate.catalog import blueprints
 from arise.validate.types import CheckOptions, CheckResult, Diagnostic, SandboxReport, Simulator
 
 console = terminal.console()
-errors = terminal.console(stderr=True)
 
 STAGE_WORDS = {
     "gate": "static gate",
@@ -50,16 +48,6 @@ Examples:
 
   arise check downloaded.scenic --require-sandbox
 """
-
-
-def _png_target(png: str | None, script: Path, many: bool) -> str | None:
-    if png is None:
-        return None
-    if many:
-        folder = Path(png)
-        folder.mkdir(parents=True, exist_ok=True)
-        return str(folder / f"{script.stem}.png")
-    return png
 
 
 def _diagnostic_panel(d: Diagnostic) -> Panel:
@@ -150,6 +138,43 @@ def print_sandbox(sandbox: SandboxReport | None, indent: str = "  ") -> None:
             console.print(terminal.text(f"{indent}  ", (note, "red")))
 
 
+class _CheckPrinter:
+    """Prints a check's events: a status line while one script runs on a terminal, then
+    each script's verdict."""
+
+    def __init__(self, quiet: bool):
+        self.quiet = quiet
+        self.status: Status | None = None
+        self.shown = ""
+
+    def __enter__(self) -> _CheckPrinter:
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self._stop()
+
+    def on_event(self, event: CheckEvent) -> None:
+        if self.quiet:
+            return
+        if isinstance(event, ScriptStarted):
+            if console.is_terminal:
+                self.shown = terminal.markup_name(event.script)
+                self.status = console.status(f"{self.shown}: starting")
+                self.status.start()
+        elif isinstance(event, ScriptStage):
+            if self.status is not None:
+                words = STAGE_WORDS.get(event.stage) or terminal.markup_name(event.stage)
+                self.status.update(f"{self.shown}: {words}…")
+        else:
+            self._stop()
+            _print_result(event.result)
+
+    def _stop(self) -> None:
+        if self.status is not None:
+            self.status.stop()
+            self.status = None
+
+
 def check_command(
     scripts: Annotated[list[Path], typer.Argument(help="Scenic files to check.")],
     simulator: Annotated[
@@ -190,11 +215,6 @@ def check_command(
         ),
     ] = False,
 ) -> None:
-    try:
-        registry = MapRegistry(map_dir)
-    except MapError as error:
-        errors.print(terminal.text(("error:", "red"), " ", str(error)))
-        raise typer.Exit(2) from None
     options = CheckOptions(
         simulator=simulator,
         map_dir=map_dir,
@@ -208,40 +228,14 @@ def check_command(
         carla_port=carla_port,
         require_sandbox=require_sandbox,
     )
-    many = len(scripts) > 1
-    results: list[CheckResult] = []
-    with WorkerPool(size=max(1, min(workers, len(scripts))), memory_mb=memory_mb) as pool:
-
-        def run_one(script: Path, on_stage: Callable[[str], None] | None = None) -> CheckResult:
-            per_script = options.model_copy(update={"png": _png_target(png, script, many)})
-            return check(script, per_script, pool=pool, registry=registry, on_stage=on_stage)
-
-        if workers > 1 and many:
-            with ThreadPoolExecutor(max_workers=pool.size) as executor:
-                for result in executor.map(run_one, scripts):
-                    results.append(result)
-                    if not as_json:
-                        _print_result(result)
-        else:
-            for script in scripts:
-                if as_json or not console.is_terminal:
-                    result = run_one(script)
-                else:
-                    shown = terminal.markup_name(script)
-                    with console.status(f"{shown}: starting") as status:
-
-                        def show(stage: str, status: Any = status, shown: str = shown) -> None:
-                            words = STAGE_WORDS.get(stage) or terminal.markup_name(stage)
-                            status.update(f"{shown}: {words}…")
-
-                        result = run_one(script, show)
-                results.append(result)
-                if not as_json:
-                    _print_result(result)
+    with _CheckPrinter(quiet=as_json) as printer:
+        results = check_scripts(
+            scripts, options, workers=workers, png=png, on_event=printer.on_event
+        )
     if as_json:
         payload = [r.model_dump(mode="json") for r in results]
-        print(json.dumps(payload if many else payload[0], indent=2))
-    elif many:
+        print(json.dumps(payload if len(results) > 1 else payload[0], indent=2))
+    elif len(results) > 1:
         passed = sum(r.ok for r in results)
         console.print(f"\n{passed} of {len(results)} scripts executed")
     raise typer.Exit(0 if all(r.ok for r in results) else 1)
@@ -257,11 +251,7 @@ def maps_list(
     map_dir: Annotated[str | None, typer.Option(help="Folder of extra .xodr maps.")] = None,
 ) -> None:
     """List the maps a script can run on, with their features."""
-    try:
-        registry = MapRegistry(map_dir)
-    except MapError as error:
-        errors.print(terminal.text(("error:", "red"), " ", str(error)))
-        raise typer.Exit(2) from None
+    registry = MapRegistry(map_dir)  # MapError: one line, exit 2
     table = Table(title="maps")
     for column in ("name", "source", "features", "file"):
         table.add_column(column)
@@ -285,21 +275,5 @@ def blueprints_command(
     ] = None,
 ) -> None:
     """List the CARLA blueprints of the installed CARLA version, by category."""
-    import scenic.simulators.carla.blueprints as table
-
-    categories = sorted(
-        name.removesuffix("Models")
-        for name in dir(table)
-        if name.endswith("Models") and isinstance(getattr(table, name), list)
-    )
-    if category is not None and category not in categories:
-        errors.print(
-            terminal.text(
-                ("error:", "red"),
-                f" unknown category {category!r}; choose from {', '.join(categories)}",
-            )
-        )
-        raise typer.Exit(2)
-    for name in [category] if category else categories:
-        models = ", ".join(getattr(table, f"{name}Models"))
-        console.print(terminal.text((name, "bold"), ": ", models))
+    for name, models in blueprints(category).items():  # UnknownCategory: one line, exit 2
+        console.print(terminal.text((name, "bold"), ": ", ", ".join(models)))

@@ -7,24 +7,31 @@ from pathlib import Path
 from typing import Annotated, TypeVar
 
 import typer
-from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
+from rich.progress import (
+    BarColumn,
+    MofNCompleteColumn,
+    Progress,
+    TaskID,
+    TextColumn,
+    TimeElapsedColumn,
+)
 from rich.table import Table
 
 from arise import terminal
 from arise.evaluate.search.errors import SearchError
 from arise.evaluate.search.executor import Executor
-from arise.evaluate.search.expression import FACTS, parse_expression
+from arise.evaluate.search.expression import FACTS
 from arise.evaluate.search.objective import Objective
-from arise.evaluate.search.outputs import describe, write_outputs
-from arise.evaluate.search.runner import (
-    SEARCH_SPAWN_ATTEMPTS,
-    SearchConfig,
-    SearchResult,
-    resolve_script,
-    run_search,
-)
+from arise.evaluate.search.outputs import describe
+from arise.evaluate.search.runner import SEARCH_SPAWN_ATTEMPTS, SearchResult
 from arise.evaluate.search.sampler import SamplerKind
-from arise.evaluate.search.store import SearchStore, TrialRecord
+from arise.evaluate.search.session import (
+    SamplerStarted,
+    SearchEvent,
+    SearchRequest,
+    TrialDone,
+    search,
+)
 from arise.limits import MAX_STEPS
 from arise.validate import CheckOptions
 
@@ -120,49 +127,25 @@ def search_command(
         bool, typer.Option(help="Run the critical script again for its replay and .xosc.")
     ] = True,
 ) -> None:
-    script = resolve_script(target)
-    chosen_objective = _choice(Objective, objective, "objective")
-    if expression is not None and chosen_objective is not Objective.CUSTOM:
-        raise SearchError("--expression goes with --objective custom")
-    goal = parse_expression(expression or "") if chosen_objective is Objective.CUSTOM else None
-    samplers = [_choice(SamplerKind, s, "sampler") for s in sampler.split(",") if s.strip()]
-    chosen_executor = _choice(Executor, executor, "executor")
-    if not samplers:
-        raise SearchError("--sampler needs at least one sampler")
-    folder = out or (
-        target / "search" if target.is_dir() else Path("out") / f"search-{script.stem}"
+    request = SearchRequest(
+        target=target,
+        objective=_choice(Objective, objective, "objective"),
+        expression=expression,
+        samplers=[_choice(SamplerKind, s, "sampler") for s in sampler.split(",") if s.strip()],
+        executor=_choice(Executor, executor, "executor"),
+        trials=trials,
+        workers=workers,
+        ray_address=ray_address,
+        seed=seed,
+        out=out,
+        check=CheckOptions(
+            steps=steps, timeout=timeout, map_dir=map_dir, spawn_attempts=spawn_attempts
+        ),
+        replay=replay,
     )
-    check = CheckOptions(
-        steps=steps, timeout=timeout, map_dir=map_dir, spawn_attempts=spawn_attempts
-    )
-    results: list[SearchResult] = []
-    with SearchStore(folder / "search.sqlite") as store:
-        for kind in samplers:
-            config = SearchConfig(
-                script=script,
-                objective=chosen_objective,
-                expression=goal,
-                sampler=kind,
-                trials=trials,
-                workers=workers,
-                executor=chosen_executor,
-                seed=seed,
-                check=check,
-                ray_address=ray_address,
-            )
-            try:
-                results.append(_run_with_bar(config, store))
-            except KeyboardInterrupt:
-                console.print(
-                    terminal.text(
-                        "\ninterrupted: finished trials are in ",
-                        terminal.name(store.path),
-                        "; run the same command to resume",
-                    )
-                )
-                raise typer.Exit(130) from None
-    _print_table(results)
-    files = write_outputs(results, folder, replay=replay)
+    with _SearchPrinter() as printer:
+        session = search(request, printer.on_event)  # Ctrl-C: Interrupted, exit 130
+    files = session.files
     if files.critical_script is not None:
         console.print(terminal.text("critical instance: ", terminal.name(files.critical_script)))
     for path in files.replay:
@@ -181,31 +164,59 @@ def search_command(
     )
 
 
-def _run_with_bar(config: SearchConfig, store: SearchStore) -> SearchResult:
-    columns = [
-        TextColumn("{task.description}"),
-        BarColumn(),
-        MofNCompleteColumn(),
-        TimeElapsedColumn(),
-    ]
-    name = config.sampler.value
-    with Progress(*columns, console=console, disable=not console.is_terminal) as bar:
-        task = bar.add_task(f"{name}: starting", total=config.trials)
+class _SearchPrinter:
+    """Prints a search's events: a bar per sampler on a terminal (a line per trial
+    elsewhere), then the table of the samplers' results."""
 
-        def advance(record: TrialRecord, result: SearchResult) -> None:
-            best = result.best
-            if best is None:
-                text = f"{name}: no trial ran yet"
-            else:
-                text = (
-                    f"{name}: best {config.objective.value} {best.outcome.value:.2f} "
-                    f"{config.objective.unit} (trial {best.index + 1})"
-                )
-            bar.update(task, advance=1, description=text)
-            if not console.is_terminal:
-                console.print(terminal.text(name, " ", describe(record, config.objective)))
+    def __init__(self) -> None:
+        self.bar: Progress | None = None
+        self.task: TaskID | None = None
 
-        return run_search(config, store, advance)
+    def __enter__(self) -> _SearchPrinter:
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self._stop()
+
+    def on_event(self, event: SearchEvent) -> None:
+        if isinstance(event, SamplerStarted):
+            self._stop()
+            self.bar = Progress(
+                TextColumn("{task.description}"),
+                BarColumn(),
+                MofNCompleteColumn(),
+                TimeElapsedColumn(),
+                console=console,
+                disable=not console.is_terminal,
+            )
+            self.bar.start()
+            name = event.config.sampler.value
+            self.task = self.bar.add_task(f"{name}: starting", total=event.config.trials)
+        elif isinstance(event, TrialDone):
+            self._trial(event)
+        else:
+            self._stop()
+            _print_table(event.results)
+
+    def _trial(self, event: TrialDone) -> None:
+        config, name = event.config, event.config.sampler.value
+        best = event.result.best
+        if best is None:
+            text = f"{name}: no trial ran yet"
+        else:
+            text = (
+                f"{name}: best {config.objective.value} {best.outcome.value:.2f} "
+                f"{config.objective.unit} (trial {best.index + 1})"
+            )
+        if self.bar is not None and self.task is not None:
+            self.bar.update(self.task, advance=1, description=text)
+        if not console.is_terminal:
+            console.print(terminal.text(name, " ", describe(event.record, config.objective)))
+
+    def _stop(self) -> None:
+        if self.bar is not None:
+            self.bar.stop()
+            self.bar = None
 
 
 def _print_table(results: list[SearchResult]) -> None:
