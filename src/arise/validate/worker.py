@@ -35,6 +35,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+from arise.errors import AriseError
 from arise.validate.diagnostics import (
     from_exception,
     locate,
@@ -64,11 +65,11 @@ SOFT_TIMEOUT_GRACE = 2.0  # seconds between our own interrupt and the parent's k
 MESSAGE_LIMIT_BYTES = 64 * 1024 * 1024  # a child's message longer than this is a flood
 
 
-class CheckTimeout(Exception):
+class CheckTimeout(AriseError):
     """The check ran past its time limit; raised inside the script's code to get its line."""
 
 
-class _Failed(Exception):
+class _Failed(AriseError):
     def __init__(self, diagnostic: Diagnostic):
         super().__init__(diagnostic.message)
         self.diagnostic = diagnostic
