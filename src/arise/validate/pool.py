@@ -44,6 +44,15 @@ from arise.validate.process_limit import (
     count_tasks,
     limit_tasks,
 )
+from arise.validate.protocol import (
+    ChildDied,
+    ProtocolError,
+    Ready,
+    Result,
+    StageEntered,
+    WorkerMessage,
+    parse_message,
+)
 from arise.validate.types import Diagnostic, SandboxReport, Stage
 
 READY_TIMEOUT = 120.0  # seconds for a cold worker to import Scenic on a busy machine
@@ -66,7 +75,7 @@ _PASSED_ENV = (
     "ARISE_WORKER_STDERR",
 )
 
-StageCallback = Callable[[str], None]
+StageCallback = Callable[[Stage], None]
 
 
 class WorkerDied(AriseError):
@@ -198,16 +207,13 @@ class Worker:
             message = self._read_message(time.monotonic() + READY_TIMEOUT)
         except WorkerDied:
             message = None
-        if message is None or message.get("event") != "ready":
+        if not isinstance(message, Ready):
             self.kill()
             raise WorkerStartError(
                 "a validator worker did not start; run `python -m arise.validate.worker` to see why"
             )
         # Said before any script ran, so a script cannot forge it.
-        self.sandbox = SandboxReport.model_validate(
-            message.get("sandbox")
-            or {"missing": ["landlock-fs", "landlock-net", "landlock-scope", "seccomp", "rlimits"]}
-        )
+        self.sandbox = message.sandbox
         if confine:
             self.sandbox.notes.append(
                 self.task_limit.describe()
@@ -220,11 +226,11 @@ class Worker:
     def alive(self) -> bool:
         return self.process.poll() is None
 
-    def _read_message(self, deadline: float) -> dict[str, Any] | None:
-        """Next JSON line from the worker, or None at the deadline or on exit.
+    def _read_message(self, deadline: float) -> WorkerMessage | None:
+        """Next message from the worker, or None at the deadline or on exit.
 
-        Raises WorkerDied when the worker breaks the protocol (a flood, or not JSON) or
-        writes more than its quota into the scratch folder.
+        Raises WorkerDied when the worker breaks the protocol (a flood, or a line that is
+        not one of its messages) or writes more than its quota into the scratch folder.
         """
         assert self.process.stdout is not None
         fd = self.process.stdout.fileno()
@@ -251,17 +257,14 @@ class Worker:
         line = bytes(self._buffer[:end])
         del self._buffer[: end + 1]
         try:
-            message = json.loads(line)
-        except ValueError:
+            return parse_message(line)
+        except ProtocolError:
             raise WorkerDied(
                 self._refused(
                     "ProtocolViolation",
                     "the worker wrote something other than its protocol on its result channel",
                 )
             ) from None
-        if not isinstance(message, dict):
-            raise WorkerDied(self._refused("ProtocolViolation", "malformed worker message"))
-        return message
 
     def _watch_limits(self) -> None:
         """Stop a worker past its task or scratch limits (where the kernel cannot)."""
@@ -296,7 +299,7 @@ class Worker:
     ) -> dict[str, Any]:
         """Send one check; return the worker's result dict or raise WorkerDied."""
         assert self.process.stdin is not None
-        stage = Stage.GATE.value
+        stage = Stage.GATE
         try:
             self.process.stdin.write((json.dumps(request) + "\n").encode())
             self.process.stdin.flush()
@@ -309,17 +312,22 @@ class Worker:
                 raise WorkerDied(
                     self._death(stage, timeout, timed_out=time.monotonic() >= deadline)
                 )
-            if message.get("event") == "stage":
-                stage = message["stage"]
-                if on_stage:
-                    on_stage(stage)
-            elif message.get("event") == "result" and isinstance(message.get("result"), dict):
-                self.checks_done += 1
-                return dict(message["result"])
-            elif message.get("event") == "child_died":
-                raise WorkerDied(self._child_death(stage, message))
+            match message:
+                case StageEntered():
+                    stage = message.stage
+                    if on_stage:
+                        on_stage(stage)
+                case Result():
+                    self.checks_done += 1
+                    return message.result
+                case ChildDied():
+                    raise WorkerDied(self._child_death(stage, message))
+                case Ready():  # said once, at the start: a second one is not the worker's
+                    raise WorkerDied(
+                        self._refused("ProtocolViolation", "the worker said it was ready twice")
+                    )
 
-    def _death(self, stage: str, timeout: float, timed_out: bool) -> Diagnostic:
+    def _death(self, stage: Stage, timeout: float, timed_out: bool) -> Diagnostic:
         """Why the worker stopped answering: its deadline passed (a timeout), or it died
         before (a crash). Decided by the clock, not by whether it is still alive, which
         races with a worker that is dying."""
@@ -327,7 +335,7 @@ class Worker:
         code = self.process.returncode
         if timed_out:
             return Diagnostic(
-                stage=Stage(stage),
+                stage=stage,
                 error_type="Timeout",
                 message=f"the check did not finish within {timeout:g} s "
                 f"(killed in the {stage} stage)",
@@ -337,7 +345,7 @@ class Worker:
         how = f"signal {-code}" if code is not None and code < 0 else f"exit code {code}"
         memory = code is not None and code in (-signal.SIGKILL, -signal.SIGSEGV)
         return Diagnostic(
-            stage=Stage(stage),
+            stage=stage,
             error_type="WorkerCrashed",
             message=f"the validator process died in the {stage} stage ({how})",
             hint=(
@@ -347,22 +355,22 @@ class Worker:
             ),
         )
 
-    def _child_death(self, stage: str, message: dict[str, Any]) -> Diagnostic:
+    def _child_death(self, stage: Stage, message: ChildDied) -> Diagnostic:
         """The child that ran the script ended without a result (the server is fine)."""
-        if message.get("flooded") or message.get("garbled"):
-            what = "flooded" if message.get("flooded") else "wrote its own lines on"
+        if message.flooded or message.garbled:
+            what = "flooded" if message.flooded else "wrote its own lines on"
             return Diagnostic(
-                stage=Stage(stage),
+                stage=stage,
                 error_type="ProtocolViolation",
                 message=f"the script {what} the validator's result channel, and no result "
                 "came through",
                 hint="the script wrote on the validator's channel; remove that code.",
             )
-        code = int(message.get("code") or 0)
+        code = message.code
         how = f"signal {-code}" if code < 0 else f"exit code {code}"
         memory = code in (-signal.SIGKILL, -signal.SIGSEGV)
         return Diagnostic(
-            stage=Stage(stage),
+            stage=stage,
             error_type="WorkerCrashed",
             message=f"the process running the script died in the {stage} stage ({how}) "
             "without a result",

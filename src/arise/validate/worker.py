@@ -45,6 +45,16 @@ from arise.validate.diagnostics import (
 from arise.validate.gate import Refusal, scan_tokens, scan_tree
 from arise.validate.lanes import LaneReading, find_weaving, read_lanes
 from arise.validate.lineage import ParentMark, recorded_parent
+from arise.validate.protocol import (
+    ChildDied,
+    ProtocolError,
+    Ready,
+    Result,
+    StageEntered,
+    WorkerMessage,
+    dump_message,
+    parse_message,
+)
 from arise.validate.script_info import CARLA_MODEL, KNOWN_MODELS, ScriptInfo, read_script_info
 from arise.validate.types import (
     AgentTrace,
@@ -59,7 +69,7 @@ from arise.validate.types import (
     TracePoint,
 )
 
-Emit = Callable[[dict[str, Any]], None]
+Emit = Callable[[WorkerMessage], None]
 OFFLINE_MODEL = "arise.validate.worldmodel.model"
 SOFT_TIMEOUT_GRACE = 2.0  # seconds between our own interrupt and the parent's kill
 MESSAGE_LIMIT_BYTES = 64 * 1024 * 1024  # a child's message longer than this is a flood
@@ -390,7 +400,7 @@ def run_check(request: dict[str, Any], emit: Emit, scratch: Path) -> CheckResult
     def enter(next_stage: Stage) -> float:
         nonlocal stage
         stage = next_stage
-        emit({"event": "stage", "stage": next_stage.value})
+        emit(StageEntered(stage=next_stage))
         return time.perf_counter()
 
     seed = options.seed if options.seed is not None else random.randrange(2**31)
@@ -668,7 +678,6 @@ class _Relayed:
 def _relay(read_fd: int, emit: Emit) -> _Relayed:
     """Pass a child's stage and result messages on, and note anything else it wrote."""
     seen = _Relayed()
-    stages = {s.value for s in Stage}
     buffer = bytearray()
     with os.fdopen(read_fd, "rb") as stream:
         while chunk := stream.read1(1 << 20):
@@ -683,15 +692,15 @@ def _relay(read_fd: int, emit: Emit) -> _Relayed:
             buffer = bytearray(rest)
             for line in lines:
                 try:
-                    message = json.loads(line)
-                except ValueError:
+                    message = parse_message(line)
+                except ProtocolError:
                     seen.garbled = True
                     continue
-                if not isinstance(message, dict) or seen.result:
-                    seen.garbled = True
-                elif message.get("event") == "stage" and message.get("stage") in stages:
-                    emit({"event": "stage", "stage": message["stage"]})
-                elif message.get("event") == "result" and isinstance(message.get("result"), dict):
+                # A child says only stages, then one result; a `ready` or `child_died` of its
+                # own, or anything after its result, is forged.
+                if isinstance(message, StageEntered) and not seen.result:
+                    emit(message)
+                elif isinstance(message, Result) and not seen.result:
                     emit(message)
                     seen.result = True
                 else:
@@ -710,15 +719,15 @@ def _child(request: dict[str, Any], write_fd: int, scratch: Path, closing: list[
         isolate_child()
     channel = os.fdopen(write_fd, "w", buffering=1, encoding="utf-8")
 
-    def emit(message: dict[str, Any]) -> None:
-        channel.write(json.dumps(message) + "\n")
+    def emit(message: WorkerMessage) -> None:
+        channel.write(dump_message(message))
         channel.flush()
 
     result = run_check(request, emit, scratch)
     payload = result.model_dump(mode="json")
     if result.png:
         payload["png_data"] = base64.b64encode(Path(result.png).read_bytes()).decode()
-    emit({"event": "result", "result": payload})
+    emit(Result(result=payload))
 
 
 def _serve_one(request: dict[str, Any], emit: Emit, scratch: Path, private_fds: list[int]) -> None:
@@ -744,9 +753,7 @@ def _serve_one(request: dict[str, Any], emit: Emit, scratch: Path, private_fds: 
     _, status = os.waitpid(pid, 0)
     if not seen.result:
         code = -os.WTERMSIG(status) if os.WIFSIGNALED(status) else os.WEXITSTATUS(status)
-        emit(
-            {"event": "child_died", "code": code, "flooded": seen.flooded, "garbled": seen.garbled}
-        )
+        emit(ChildDied(code=code, flooded=seen.flooded, garbled=seen.garbled))
 
 
 # --- dying with the parent --------------------------------------------------------------------
@@ -829,8 +836,8 @@ def main() -> None:
     if os.environ.get("ARISE_WORKER_STDERR") != "1":
         os.dup2(sink, 2)
 
-    def emit(message: dict[str, Any]) -> None:
-        protocol.write(json.dumps(message) + "\n")
+    def emit(message: WorkerMessage) -> None:
+        protocol.write(dump_message(message))
         protocol.flush()
 
     # Started by hand (to see why a worker fails): a scratch folder of its own.
@@ -849,7 +856,7 @@ def main() -> None:
         _watch_parent(parent)
         if parent.pidfd is not None:
             private.append(parent.pidfd)
-    emit({"event": "ready", "pid": os.getpid(), "sandbox": sandbox.model_dump(mode="json")})
+    emit(Ready(pid=os.getpid(), sandbox=sandbox))
     for line in sys.stdin:
         if not line.strip():
             continue
