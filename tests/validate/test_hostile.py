@@ -15,6 +15,7 @@ an unconfined runner (tests/validate/unconfined_runner.py: Scenic's own
 
 from __future__ import annotations
 
+import contextlib
 import json
 import os
 import re
@@ -31,9 +32,11 @@ from importlib import resources
 from pathlib import Path
 from typing import Any
 
+import psutil
 import pytest
 import yaml
 
+from arise.paths import cache_dir
 from arise.validate import CheckOptions, WorkerPool, check
 from tests.conftest import DATA, EXAMPLES
 
@@ -352,6 +355,106 @@ def test_hostile_script_is_contained(
             where = result.diagnostic.one_line() if result.diagnostic else "no diagnostic"
             report.append(f"{label}: " + "; ".join(problems) + f" [{where}]")
     assert not report, f"{entry['name']} got out:\n" + "\n".join(report)
+
+
+# --- the other entry points: replay, export and the server's check -------------------------
+# The classes whose payload could reach the parent through what a check hands back: a
+# forged or flooded result, a map or model a script names, a link beside it, a pickle,
+# state left in the worker, and module escapes (what a forger needs).
+PARENT_FACING = ("huge_output", "model_map", "symlink", "pickle", "persistence", "format_string")
+PARENT_CASES = [e for e in MANIFEST if e["category"] in PARENT_FACING]
+
+
+def _files_holding(root: Path, text: str, exclude: Path) -> list[str]:
+    found = []
+    for path in root.rglob("*"):
+        if path.is_file() and not path.is_symlink() and not path.is_relative_to(exclude):
+            with contextlib.suppress(OSError):
+                if text.encode() in path.read_bytes():
+                    found.append(str(path.relative_to(root)))
+    return found
+
+
+def _worker_processes() -> set[int]:
+    """Live validator workers under this process (a zombie has already ended)."""
+    found = set()
+    for child in psutil.Process().children(recursive=True):
+        with contextlib.suppress(psutil.Error):  # ended meanwhile, or a zombie
+            if "arise.validate.worker" in " ".join(child.cmdline()):
+                found.add(child.pid)
+    return found
+
+
+@pytest.mark.parametrize("entry", PARENT_CASES, ids=[e["name"] for e in PARENT_CASES])
+def test_hostile_script_through_replay_export_and_the_servers_check(
+    entry: dict[str, Any],
+    hostile_pool: WorkerPool,
+    listener: Listener,
+    signals: SignalCounter,
+    tmp_path: Path,
+) -> None:
+    """Replay and export take the trace of a check made with the gate off (so the parent
+    alone must hold); the server checks with its own options (gate on). Either a clear
+    error or files on the parent's own map, only in the output folder; never the canary or
+    the secret, and no worker left behind."""
+    from arise.errors import AriseError
+    from arise.present.replay import write_replay
+    from arise.present.source import load_trace
+    from arise.present.xosc import write_export
+    from arise.serve.checks import check_script
+
+    case = prepare(entry, tmp_path / "case", listener)
+    contacts, signals_before = listener.contacts, signals.count
+    workers_before = _worker_processes()
+    out = tmp_path / "out"
+    options = CheckOptions(
+        seed=1, steps=40, timeout=float(entry.get("timeout", CHECK_TIMEOUT)), static_gate=False
+    )
+    outcomes: list[str] = []
+    try:
+        source = load_trace(case.script, pool=hostile_pool, options=options)
+    except AriseError as refusal:  # the script did not run: one clear line
+        assert str(refusal).strip() and "\n" not in str(refusal).strip(), refusal
+        outcomes.append("refused")
+    else:
+        assert source.map is None or Path(source.map.path).is_relative_to(cache_dir())
+        write_replay(source, out)
+        files = write_export(source, out)
+        assert files.xodr is None or files.xodr.parent == out
+        outcomes.append("replayed")
+    if entry.get("limitation") == "self_verdict":  # the forgery got through to the files
+        assert outcomes == ["replayed"], outcomes
+    view = check_script(case.script.read_text(encoding="utf-8"), tmp_path / "served", hostile_pool)
+    assert isinstance(view, dict) and "ok" in view
+    problems = []
+    if case.canary_exists():
+        problems.append(f"the canary {case.canary.name} exists")
+    leaked = _files_holding(tmp_path, SECRET_TEXT, exclude=case.secret.parent)
+    leaked += [] if SECRET_TEXT not in json.dumps(view) else ["the server's view"]
+    if [name for name in leaked if "home" not in name]:
+        problems.append(f"the secret is in {leaked}")
+    if listener.contacts > contacts or signals.count > signals_before:
+        problems.append("the script reached the network or signalled the test")
+    outside = [
+        p
+        for p in (tmp_path / "case").rglob("*")
+        if p.is_file() and p.stat().st_mtime > case.script.stat().st_mtime + 1
+    ]
+    if outside:
+        problems.append(f"files appeared beside the script: {outside}")
+    if _worker_processes() - workers_before - _worker_processes_of(hostile_pool):
+        problems.append("a worker was left running")
+    assert not problems, f"{entry['name']} ({outcomes}): " + "; ".join(problems)
+
+
+def _worker_processes_of(pool: WorkerPool) -> set[int]:
+    """The pool's own warm workers (and their children), which may stay."""
+    pids: set[int] = set()
+    for worker in list(pool._idle.queue):
+        with contextlib.suppress(psutil.Error):
+            process = psutil.Process(worker.process.pid)
+            pids |= {process.pid, *(c.pid for c in process.children(recursive=True))}
+    return pids
 
 
 # --- the attacks are real -------------------------------------------------------------------
