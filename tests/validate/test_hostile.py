@@ -422,8 +422,6 @@ def test_hostile_script_through_replay_export_and_the_servers_check(
         files = write_export(source, out)
         assert files.xodr is None or files.xodr.parent == out
         outcomes.append("replayed")
-    if entry.get("limitation") == "self_verdict":  # the forgery got through to the files
-        assert outcomes == ["replayed"], outcomes
     view = check_script(case.script.read_text(encoding="utf-8"), tmp_path / "served", hostile_pool)
     assert isinstance(view, dict) and "ok" in view
     problems = []
