@@ -78,3 +78,10 @@ def test_a_refusal_does_not_echo_the_line() -> None:
     with pytest.raises(ProtocolError) as caught:
         parse_message(json.dumps({"event": "result", "result": secret}))
     assert secret not in str(caught.value)
+
+
+def test_a_lone_surrogate_in_a_result_still_makes_a_line_that_parses() -> None:
+    line = dump_message(Result(result={"diagnostic": {"message": "bad \ud800 text", "x": [1.5]}}))
+    message = parse_message(line)
+    assert isinstance(message, Result)
+    assert message.result == {"diagnostic": {"message": "bad \ufffd text", "x": [1.5]}}

@@ -11,7 +11,6 @@ may wait, and a further one is refused at once (503) instead of piling up.
 
 from __future__ import annotations
 
-import json
 import logging
 import os
 import re
@@ -26,7 +25,22 @@ from typing import Any
 import anyio
 import anyio.to_thread
 
-from arise.serve.checkproc import Op
+from arise.serve.checkmsg import (
+    Broken,
+    Check,
+    Died,
+    Done,
+    Failed,
+    FromProcess,
+    MessageError,
+    Ran,
+    Ready,
+    Refused,
+    Run,
+    ToProcess,
+    encode,
+    from_process,
+)
 from arise.serve.checks import check_options
 from arise.serve.errors import ServeError
 from arise.validate import WorkerPool
@@ -104,7 +118,7 @@ class CheckProcess:
         except BaseException:
             self.kill()
             raise
-        if ready.get("op") != Op.READY:
+        if not isinstance(ready, Ready):
             self.kill()
             raise CheckStopped("the check process did not start")
 
@@ -112,15 +126,15 @@ class CheckProcess:
     def pid(self) -> int:
         return self.process.pid
 
-    def _send(self, message: dict[str, Any]) -> None:
+    def _send(self, message: ToProcess) -> None:
         assert self.process.stdin is not None
         try:
-            self.process.stdin.write(json.dumps(message).encode() + b"\n")
+            self.process.stdin.write(encode(message))
             self.process.stdin.flush()
         except (BrokenPipeError, ValueError):
             raise CheckStopped("the check process ended unexpectedly") from None
 
-    def _receive(self, budget: float, doing: str) -> dict[str, Any]:
+    def _receive(self, budget: float, doing: str) -> FromProcess:
         line = self.reader.read(time.monotonic() + budget)
         if line is None:
             if self.process.poll() is None:
@@ -130,12 +144,9 @@ class CheckProcess:
                 )
             raise CheckStopped("the check process ended unexpectedly")
         try:
-            message = json.loads(line)
-        except ValueError:
+            return from_process(line)
+        except MessageError:
             raise CheckStopped("the check process sent a malformed message") from None
-        if not isinstance(message, dict):
-            raise CheckStopped("the check process sent a malformed message")
-        return message
 
     def check(
         self,
@@ -148,29 +159,19 @@ class CheckProcess:
     ) -> dict[str, Any]:
         """The check's view; raises CheckFailed (the process is still good) or
         CheckStopped (the process must go)."""
-        self._send(
-            {
-                "op": Op.CHECK.value,
-                "text": text,
-                "folder": str(folder),
-                "map_dir": map_dir,
-                "timeout": timeout,
-            }
-        )
+        self._send(Check(text=text, folder=str(folder), map_dir=map_dir, timeout=timeout))
         while True:
-            message = self._receive(budget, "read the script and its result")
-            op = message.get("op")
-            if op == Op.RUN:
-                request = held_request(message.get("request"), text, map_dir, timeout)
-                self._send(run_on_pool(pool, request, timeout))
-            elif op == Op.DONE and isinstance(message.get("view"), dict):
-                view: dict[str, Any] = message["view"]
-                return view
-            elif op == Op.FAILED:
-                error = str(message.get("error") or "the check failed").splitlines()[0][:500]
-                raise (CheckStopped if message.get("internal") else CheckFailed)(error)
-            else:
-                raise CheckStopped("the check process broke the protocol")
+            match self._receive(budget, "read the script and its result"):
+                case Run(request=asked):
+                    request = held_request(asked, text, map_dir, timeout)
+                    self._send(run_on_pool(pool, request, timeout))
+                case Done(view=view):
+                    return view
+                case Failed(error=error, internal=internal):
+                    line = (error.splitlines() or ["the check failed"])[0][:500]
+                    raise (CheckStopped if internal else CheckFailed)(line or "the check failed")
+                case _:
+                    raise CheckStopped("the check process broke the protocol")
 
     def stop(self) -> None:
         """Kill the process (from any thread; its pipes stay to their owner)."""
@@ -199,21 +200,17 @@ def held_request(request: object, text: str, map_dir: str | None, timeout: float
     return {**request, "options": options}
 
 
-def run_on_pool(pool: WorkerPool, request: dict[str, Any], timeout: float) -> dict[str, Any]:
+def run_on_pool(pool: WorkerPool, request: dict[str, Any], timeout: float) -> ToProcess:
     """One run on the server's pool, as the message that answers the check process."""
     try:
-        return {"op": Op.RAN.value, "result": pool.run(request, timeout)}
+        return Ran(result=pool.run(request, timeout))
     except WorkerDied as death:
-        return {
-            "op": Op.DIED.value,
-            "diagnostic": death.diagnostic.model_dump(mode="json"),
-            "sandbox": death.sandbox.model_dump(mode="json") if death.sandbox else None,
-        }
+        return Died(diagnostic=death.diagnostic, sandbox=death.sandbox)
     except SandboxRequired as refusal:
-        return {"op": Op.REFUSED.value, "sandbox": refusal.sandbox.model_dump(mode="json")}
+        return Refused(sandbox=refusal.sandbox)
     except Exception as error:  # noqa: BLE001  (a worker that cannot start: one line)
         log.warning("a script check's run failed: %s", error)
-        return {"op": Op.BROKEN.value, "error": str(error).splitlines()[0][:500]}
+        return Broken(error=(str(error).splitlines() or [""])[0][:500])
 
 
 class ScriptChecker:

@@ -7,8 +7,9 @@ holds this process, which the server kills when it does not answer in time.
 
 The process owns no validator: when `check` wants one it asks the server (`run`), which
 runs the request on its shared warm pool and sends back the worker's raw result, so the
-result, too, is validated here. Messages are JSON lines (never pickles): the server
-writes to stdin, this process answers on its original stdout (print() goes to stderr).
+result, too, is validated here. Messages are JSON lines (never pickles), typed in
+`checkmsg`: the server writes to stdin, this process answers on its original stdout
+(print() goes to stderr).
 
     server -> process   {"op": "check", "text", "folder", "map_dir", "timeout"}
     process -> server   {"op": "run", "request"}        (zero or more times)
@@ -19,27 +20,29 @@ writes to stdin, this process answers on its original stdout (print() goes to st
 
 from __future__ import annotations
 
-import json
 import logging
 import os
 import sys
-from enum import StrEnum
 from pathlib import Path
 from typing import IO, Any, cast
 
 from arise.errors import AriseError
-
-
-class Op(StrEnum):
-    READY = "ready"
-    CHECK = "check"
-    RUN = "run"
-    RAN = "ran"
-    DIED = "died"
-    REFUSED = "refused"
-    BROKEN = "broken"
-    DONE = "done"
-    FAILED = "failed"
+from arise.serve.checkmsg import (
+    Broken,
+    Check,
+    Died,
+    Done,
+    Failed,
+    FromProcess,
+    MessageError,
+    Ran,
+    Ready,
+    Refused,
+    Run,
+    ToProcess,
+    encode,
+    to_process,
+)
 
 
 class PoolFailed(AriseError):
@@ -53,16 +56,19 @@ class Channel:
         self.incoming = incoming
         self.outgoing = outgoing
 
-    def send(self, message: dict[str, Any]) -> None:
-        self.outgoing.write(json.dumps(message).encode() + b"\n")
+    def send(self, message: FromProcess) -> None:
+        self.outgoing.write(encode(message))
         self.outgoing.flush()
 
-    def receive(self) -> dict[str, Any] | None:
+    def receive(self) -> ToProcess | None:
+        """The server's next message; None when it hung up or broke the protocol."""
         line = self.incoming.readline()
         if not line:
             return None
-        message = json.loads(line)
-        return message if isinstance(message, dict) else None
+        try:
+            return to_process(line)
+        except MessageError:
+            return None
 
 
 class RemotePool:
@@ -73,27 +79,27 @@ class RemotePool:
 
     def run(self, request: dict[str, Any], timeout: float, on_stage: Any = None) -> dict[str, Any]:
         from arise.validate.pool import SandboxRequired, WorkerDied
-        from arise.validate.types import Diagnostic, SandboxReport
 
-        self.channel.send({"op": Op.RUN.value, "request": request})
-        answer = self.channel.receive() or {}
-        op = answer.get("op")
-        if op == Op.RAN and isinstance(answer.get("result"), dict):
-            return dict(answer["result"])
-        if op == Op.DIED:
-            death = WorkerDied(Diagnostic.model_validate(answer.get("diagnostic")))
-            if answer.get("sandbox") is not None:
-                death.sandbox = SandboxReport.model_validate(answer["sandbox"])
-            raise death
-        if op == Op.REFUSED:
-            raise SandboxRequired(SandboxReport.model_validate(answer.get("sandbox")))
-        raise PoolFailed(str(answer.get("error") or "the server did not run the check"))
+        self.channel.send(Run(request=request))
+        match self.channel.receive():
+            case Ran(result=result):
+                return result
+            case Died(diagnostic=diagnostic, sandbox=sandbox):
+                death = WorkerDied(diagnostic)
+                death.sandbox = sandbox
+                raise death
+            case Refused(sandbox=sandbox):
+                raise SandboxRequired(sandbox)
+            case Broken(error=error) if error:
+                raise PoolFailed(error)
+            case _:
+                raise PoolFailed("the server did not run the check")
 
     def close(self) -> None:
         """Nothing to close: the pool is the server's."""
 
 
-def handle(channel: Channel, message: dict[str, Any]) -> dict[str, Any]:
+def handle(channel: Channel, message: Check) -> Done | Failed:
     """One check: its view, or why it failed (one line)."""
     from arise.serve.checks import check_script
     from arise.validate import WorkerPool
@@ -101,22 +107,16 @@ def handle(channel: Channel, message: dict[str, Any]) -> dict[str, Any]:
     pool = cast(WorkerPool, RemotePool(channel))  # check() only calls run()
     try:
         view = check_script(
-            str(message["text"]),
-            Path(str(message["folder"])),
-            pool,
-            message.get("map_dir"),
-            float(message["timeout"]),
+            message.text, Path(message.folder), pool, message.map_dir, message.timeout
         )
     except AriseError as error:
-        return {"op": Op.FAILED.value, "error": str(error).splitlines()[0], "internal": False}
+        return Failed(error=str(error).splitlines()[0], internal=False)
     except Exception as error:  # noqa: BLE001  (one line to the server, details to stderr)
         logging.getLogger("arise.serve").exception("the script check failed")
-        return {
-            "op": Op.FAILED.value,
-            "error": f"internal error ({type(error).__name__}) in the script check",
-            "internal": True,
-        }
-    return {"op": Op.DONE.value, "view": view}
+        return Failed(
+            error=f"internal error ({type(error).__name__}) in the script check", internal=True
+        )
+    return Done(view=view)
 
 
 def main() -> None:
@@ -126,9 +126,9 @@ def main() -> None:
     import arise.serve.checks  # noqa: F401  (imported before `ready`, not in the first check)
 
     channel = Channel(sys.stdin.buffer, outgoing)
-    channel.send({"op": Op.READY.value, "pid": os.getpid()})
+    channel.send(Ready(pid=os.getpid()))
     while (message := channel.receive()) is not None:
-        if message.get("op") == Op.CHECK:
+        if isinstance(message, Check):
             channel.send(handle(channel, message))
 
 

@@ -9,10 +9,12 @@ are held to the strict `WorkerResult` schema later (`arise.validate.api`).
 
 from __future__ import annotations
 
+import json
 from enum import StrEnum
 from typing import Annotated, Any, Literal
 
 from pydantic import BaseModel, ConfigDict, Field, TypeAdapter, ValidationError
+from pydantic_core import PydanticSerializationError
 
 from arise.errors import AriseError
 from arise.validate.types import SandboxReport, Stage
@@ -84,4 +86,14 @@ def parse_message(line: bytes | str) -> WorkerMessage:
 
 def dump_message(message: WorkerMessage) -> str:
     """One message as its line (with the newline)."""
-    return message.model_dump_json() + "\n"
+    return json_line(message)
+
+
+def json_line(message: BaseModel) -> str:
+    """A model as one JSON line. A lone surrogate (a script may raise an error that
+    holds one) becomes U+FFFD, so the message still goes through and still parses."""
+    try:
+        return message.model_dump_json() + "\n"
+    except PydanticSerializationError:
+        text = json.dumps(message.model_dump(mode="json"), ensure_ascii=False)
+        return text.encode("utf-16", "surrogatepass").decode("utf-16", "replace") + "\n"
