@@ -16,6 +16,7 @@ from typing import Annotated
 
 from pydantic import (
     BaseModel,
+    BeforeValidator,
     ConfigDict,
     Field,
     StringConstraints,
@@ -55,8 +56,21 @@ Count = Annotated[int, Field(ge=0, le=2**31)]
 Name = Annotated[str, StringConstraints(max_length=MAX_NAME)]
 # An agent, its class or behavior: identifiers (names a Python class can have).
 Identifier = Annotated[str, StringConstraints(pattern=r"^\w{1,128}$")]
-Note = Annotated[str, StringConstraints(max_length=MAX_NOTE)]
-Message = Annotated[str, StringConstraints(max_length=MAX_MESSAGE)]
+
+
+def _cut(limit: int) -> BeforeValidator:
+    """Free text is cut to its bound rather than refused: a script can make Scenic's own
+    messages (a 256 KiB line in an excerpt) longer than any bound, and the worker must
+    still be able to say so."""
+
+    def cut(value: object) -> object:
+        return value[:limit] if isinstance(value, str) else value
+
+    return BeforeValidator(cut)
+
+
+Note = Annotated[str, _cut(MAX_NOTE), StringConstraints(max_length=MAX_NOTE)]
+Message = Annotated[str, _cut(MAX_MESSAGE), StringConstraints(max_length=MAX_MESSAGE)]
 Notes = Annotated[list[Message], Field(max_length=MAX_WARNINGS)]
 EventValue = (
     Annotated[bool, Field(strict=True)]
