@@ -14,7 +14,6 @@ own maps is never evicted, so no run loses the map it is using.
 from __future__ import annotations
 
 import contextlib
-import errno
 import fcntl
 import hashlib
 import os
@@ -32,6 +31,7 @@ from arise.limits import MAP_CACHE_BUDGET_BYTES, MAP_CACHE_IN_USE_SECONDS, MAX_M
 from arise.maps.choice import is_safe_map_name
 from arise.maps.errors import MapError
 from arise.paths import cache_dir
+from arise.regular_files import FileRefused, Refusal, open_regular
 
 DIGEST_LENGTH = 16  # hex digits of sha256 that name a cache folder
 CHUNK = 1024 * 1024
@@ -60,23 +60,19 @@ def open_map_file(path: Path) -> Iterator[tuple[int, os.stat_result]]:
     """An open map file that is a regular file (no symbolic link, device or FIFO) within
     the size limit; raises MapError otherwise."""
     try:
-        fd = os.open(path, os.O_RDONLY | os.O_NOFOLLOW | os.O_NONBLOCK | os.O_CLOEXEC)
-    except OSError as error:
-        if error.errno == errno.ELOOP:
-            raise MapError(f"map file {path} is a symbolic link; give the file itself") from None
+        with open_regular(path, MAX_MAP_BYTES) as opened:
+            yield opened
+    except FileNotFoundError as error:
         raise MapError(f"map file {path} cannot be read: {error.strerror}") from None
-    try:
-        info = os.fstat(fd)
-        if not stat.S_ISREG(info.st_mode):
-            raise MapError(f"map file {path} is not a regular file")
-        if info.st_size > MAX_MAP_BYTES:
-            raise MapError(
-                f"map file {path} is {_mib(info.st_size)}; the limit is "
-                f"{_mib(MAX_MAP_BYTES)} (no road map is that large)"
-            )
-        yield fd, info
-    finally:
-        os.close(fd)
+    except FileRefused as refused:
+        reason = {
+            Refusal.LINK: "is a symbolic link; give the file itself",
+            Refusal.UNREADABLE: f"cannot be read: {refused.detail}",
+            Refusal.NOT_REGULAR: "is not a regular file",
+            Refusal.TOO_LARGE: f"is {_mib(refused.size)}; the limit is "
+            f"{_mib(MAX_MAP_BYTES)} (no road map is that large)",
+        }[refused.refusal]
+        raise MapError(f"map file {path} {reason}") from None
 
 
 def _chunks(fd: int, path: Path) -> Iterator[bytes]:

@@ -7,14 +7,13 @@ is refused with one line before anything is read.
 
 from __future__ import annotations
 
-import errno
 import json
 import os
-import stat
 from pathlib import Path
 from typing import Any
 
 from arise.present.errors import PresentError
+from arise.regular_files import FileRefused, Refusal, open_regular
 
 
 class UntrustedFileError(PresentError):
@@ -29,31 +28,23 @@ def read_regular(path: Path, limit: int) -> bytes:
     """The content of `path`, a regular file (no link, FIFO or device) of at most `limit`
     bytes; UntrustedFileError otherwise. FileNotFoundError when it does not exist."""
     try:
-        fd = os.open(path, os.O_RDONLY | os.O_NOFOLLOW | os.O_NONBLOCK | os.O_CLOEXEC)
-    except FileNotFoundError:
-        raise
-    except OSError as error:
-        if error.errno == errno.ELOOP:
-            raise UntrustedFileError(f"{path} is a symbolic link; it is not read") from None
-        raise UntrustedFileError(f"{path} cannot be read: {error.strerror}") from None
-    try:
-        info = os.fstat(fd)
-        if not stat.S_ISREG(info.st_mode):
-            raise UntrustedFileError(f"{path} is not a regular file; it is not read")
-        if info.st_size > limit:
-            raise UntrustedFileError(
-                f"{path} is {_size(info.st_size)}; the limit is {_size(limit)}"
-            )
-        chunks = []
-        total = 0
-        while chunk := os.read(fd, min(1024 * 1024, limit + 1 - total)):
-            chunks.append(chunk)
-            total += len(chunk)
-            if total > limit:
-                raise UntrustedFileError(f"{path} grew past {_size(limit)} while read")
-        return b"".join(chunks)
-    finally:
-        os.close(fd)
+        with open_regular(path, limit) as (fd, _):
+            chunks = []
+            total = 0
+            while chunk := os.read(fd, min(1024 * 1024, limit + 1 - total)):
+                chunks.append(chunk)
+                total += len(chunk)
+                if total > limit:
+                    raise UntrustedFileError(f"{path} grew past {_size(limit)} while read")
+            return b"".join(chunks)
+    except FileRefused as refused:
+        reason = {
+            Refusal.LINK: "is a symbolic link; it is not read",
+            Refusal.UNREADABLE: f"cannot be read: {refused.detail}",
+            Refusal.NOT_REGULAR: "is not a regular file; it is not read",
+            Refusal.TOO_LARGE: f"is {_size(refused.size)}; the limit is {_size(limit)}",
+        }[refused.refusal]
+        raise UntrustedFileError(f"{path} {reason}") from None
 
 
 def read_json(path: Path, limit: int) -> Any:
