@@ -22,7 +22,6 @@ script checks run in a check process (`checker`), so no request's parsing holds 
 
 from __future__ import annotations
 
-import json
 import logging
 import mimetypes
 import threading
@@ -51,6 +50,7 @@ from arise.serve.checks import admit_script
 from arise.serve.choices import REPLAY, ModelChoice, model_choices
 from arise.serve.config import ServeConfig
 from arise.serve.errors import BadInput, InputTooLarge, ServeError
+from arise.serve.events import event_json
 from arise.serve.examples import examples
 from arise.serve.guard import Guard
 from arise.serve.lanes import Runner
@@ -291,7 +291,7 @@ def create_app(
                 finished = followed.finished_state
                 for event in followed.events_after(seen):
                     seen += 1
-                    yield {"event": str(event.get("event", "message")), "data": json.dumps(event)}
+                    yield {"event": event.event.value, "data": event_json(event)}
                 if finished or await request.is_disconnected():
                     return
                 await followed.signal.wait(version, STREAM_PING)

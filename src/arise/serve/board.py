@@ -7,10 +7,10 @@ import re
 import shutil
 import threading
 from collections.abc import Callable
-from typing import Any
 
 from arise.serve.choices import ModelChoice
 from arise.serve.errors import BadInput, Conflict, NotFound
+from arise.serve.events import JobEvent, StateEvent
 from arise.serve.jobs import Job, JobState
 from arise.serve.lanes import Lane, Runner
 from arise.serve.store import RunStore, new_id
@@ -68,7 +68,7 @@ class JobBoard:
                 job.id = new_id()
             lane = self._lane(choice)
             self._jobs[job.id] = job
-        queued = {"event": "state", "state": JobState.QUEUED.value, "message": None}
+        queued = StateEvent(state=JobState.QUEUED)
         job.add_event(queued)
         self._changed(job, queued)
         try:
@@ -93,10 +93,10 @@ class JobBoard:
             self._lanes[choice.key] = lane
         return lane
 
-    def _changed(self, job: Job, event: dict[str, Any]) -> None:
+    def _changed(self, job: Job, event: JobEvent) -> None:
         """Keep the disk in step: every event appended, the job file at each change of state."""
         self.store.append_event(job, event)
-        if event.get("event") == "state":
+        if isinstance(event, StateEvent):
             self.store.save_job(job)
 
     def get(self, job_id: str) -> Job:

@@ -10,21 +10,14 @@ import asyncio
 import threading
 import time
 from dataclasses import dataclass, field
-from enum import StrEnum
 from typing import Annotated, Any
 
 from pydantic import BaseModel, ConfigDict, Field
 
 from arise.generate.run import RunStatus
-
-
-class JobState(StrEnum):
-    QUEUED = "queued"
-    RUNNING = "running"
-    DONE = "done"  # the run ended with a script that executed
-    FAILED = "failed"  # the run ended without one (its message says why)
-    CANCELLED = "cancelled"
-
+from arise.limits import MAX_MESSAGE
+from arise.serve.events import JobEvent, StateEvent
+from arise.serve.events import JobState as JobState  # where it was; its events carry it
 
 FINISHED = frozenset({JobState.DONE, JobState.FAILED, JobState.CANCELLED})
 
@@ -69,7 +62,7 @@ class Signal:
 @dataclass
 class Job:
     """One generation request. `events` holds, in order, the pipeline's progress events
-    (`event_dict` form) and a `state` event at each change of state."""
+    and a `state` event at each change of state (`arise.serve.events`)."""
 
     id: str
     description: str
@@ -81,7 +74,7 @@ class Job:
     finished: float | None = None
     message: str | None = None
     run_status: str | None = None  # the run's RunStatus, once it ended
-    events: list[dict[str, Any]] = field(default_factory=list)
+    events: list[JobEvent] = field(default_factory=list)
     cancel_requested: threading.Event = field(default_factory=threading.Event, repr=False)
     signal: Signal = field(default_factory=Signal, repr=False)
     _lock: threading.Lock = field(default_factory=threading.Lock, repr=False)
@@ -94,16 +87,16 @@ class Job:
     def finished_state(self) -> bool:
         return self.state in FINISHED
 
-    def add_event(self, event: dict[str, Any]) -> None:
+    def add_event(self, event: JobEvent) -> None:
         with self._lock:
             self.events.append(event)
         self.signal.notify()
 
-    def events_after(self, seen: int) -> list[dict[str, Any]]:
+    def events_after(self, seen: int) -> list[JobEvent]:
         with self._lock:
             return list(self.events[seen:])
 
-    def move(self, state: JobState, message: str | None = None) -> dict[str, Any] | None:
+    def move(self, state: JobState, message: str | None = None) -> StateEvent | None:
         """The one way a job changes state: returns the `state` event it added, or None
         (and nothing changes) once the job has finished."""
         with self._lock:
@@ -117,7 +110,8 @@ class Job:
                 self.finished = now
             if message is not None:
                 self.message = message
-            event = {"event": "state", "state": state.value, "message": self.message}
+            cut = None if self.message is None else self.message[:MAX_MESSAGE]
+            event = StateEvent(state=state, message=cut)
             self.events.append(event)
         self.signal.notify()
         return event

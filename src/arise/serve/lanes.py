@@ -12,12 +12,13 @@ import threading
 from collections import deque
 from collections.abc import Callable
 from pathlib import Path
-from typing import Any, Protocol
+from typing import Protocol
 
 from arise.errors import AriseError
-from arise.generate.events import ProgressEvent, RunFinished, event_dict
+from arise.generate.events import ProgressEvent, RunFinished
 from arise.generate.run import Generation
 from arise.serve.errors import JobCancelled, QueueFull
+from arise.serve.events import JobEvent, from_progress
 from arise.serve.jobs import Job, JobState
 
 log = logging.getLogger("arise.serve")
@@ -37,7 +38,7 @@ class Runner(Protocol):
 
 
 #: Called with a job and the event it just got (a progress event, or a `state` event).
-OnChange = Callable[[Job, dict[str, Any]], None]
+OnChange = Callable[[Job, JobEvent], None]
 
 
 class Lane:
@@ -141,7 +142,7 @@ class Lane:
         def progress(event: ProgressEvent) -> None:
             if job.cancel_requested.is_set() and not isinstance(event, RunFinished):
                 raise JobCancelled("cancelled")
-            data = event_dict(event)
+            data = from_progress(event)
             job.add_event(data)
             self._on_change(job, data)
 

@@ -25,10 +25,11 @@ import time
 import zipfile
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, BinaryIO
+from typing import BinaryIO
 
 from arise.generate.outputs import write_atomic
 from arise.serve.errors import NotFound, ServeError
+from arise.serve.events import JobEvent, event_json, read_event
 from arise.serve.jobs import FINISHED, Job, JobState
 from arise.serve.safefs import EntryKind, Folder, Refused, parse_json
 
@@ -41,7 +42,6 @@ SKIPPED_FILE = "SKIPPED.txt"
 BUNDLE = ("scenario.scenic", "scenario.xosc", "report.json", "replay.html")
 _ID = re.compile(r"^\d{8}-\d{6}-[0-9a-f]{6}$")
 _FILE = re.compile(r"^[A-Za-z0-9_][A-Za-z0-9_.-]{0,120}$")
-_EVENT_NAME = re.compile(r"^[a-z_]{1,32}$")
 INTERRUPTED = "the server stopped before this job finished; submit it again"
 #: Bounds on what is read from a run folder.
 MAX_FILE_BYTES = 64 * 1024 * 1024  # one served or zipped file (a replay GIF is far less)
@@ -123,13 +123,13 @@ class RunStore:
         folder = self.folder(job.id, create=True)
         write_atomic(folder / JOB_FILE, json.dumps(job.as_dict(), indent=2) + "\n")
 
-    def append_event(self, job: Job, event: dict[str, Any]) -> None:
+    def append_event(self, job: Job, event: JobEvent) -> None:
         """Append to the run's events.jsonl; one that is a link is left alone (the job
         keeps its events in memory, and a restart will not read that file)."""
         self.folder(job.id, create=True)
         with self.open(job.id) as folder:
             try:
-                folder.append_text(EVENTS_FILE, json.dumps(event, default=str) + "\n")
+                folder.append_text(EVENTS_FILE, event_json(event) + "\n")
             except Refused as refusal:
                 log.warning("event of job %s not saved: %s", job.id, refusal)
 
@@ -169,19 +169,14 @@ class RunStore:
         return job
 
     @staticmethod
-    def _events(folder: Folder) -> list[dict[str, Any]]:
+    def _events(folder: Folder) -> list[JobEvent]:
         text = folder.read_text(EVENTS_FILE, MAX_EVENTS_BYTES)
         if text is None:
             return []
-        events = []
-        for line in text.splitlines()[:MAX_EVENTS]:
-            try:
-                event = parse_json(line)
-            except ValueError:
-                continue  # the last line of a server that was killed mid-write
-            if isinstance(event, dict) and _EVENT_NAME.match(str(event.get("event", ""))):
-                events.append(event)
-        return events
+        # Each line typed, or skipped: the last line of a server killed mid-write, or one
+        # that is not one of our events (a run folder anyone may hand over).
+        read = (read_event(line) for line in text.splitlines()[:MAX_EVENTS])
+        return [event for event in read if event is not None]
 
     def file(self, run_id: str, name: str) -> tuple[BinaryIO, int]:
         """One file of the run's own folder, opened, and its size (`Refused`: 404)."""
