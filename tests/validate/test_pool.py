@@ -8,7 +8,7 @@ import psutil
 import pytest
 
 from arise.validate import CheckOptions, WorkerPool, check, check_text
-from tests.conftest import DATA, EXAMPLES
+from tests.conftest import DATA, EXAMPLES, REPO
 
 
 @pytest.mark.slow
@@ -81,3 +81,41 @@ def test_closing_while_a_worker_starts_leaves_no_process() -> None:
     assert pool._started == 0, "the start was ended, not waited for and then killed"
     psutil.wait_procs([p for p in workers() if p not in before], timeout=10)
     assert [p for p in workers() if p not in before and p.is_running()] == []
+
+
+# A script (past the static gate, which would refuse it) that writes the pool's own words
+# on every pipe it inherited, then ends its process before any result: the fork server's
+# word of a `ready`, a `child_died` or a stage with a field of its own.
+FORGER = """param map = localPath('{map}')
+model scenic.simulators.carla.model
+import typing
+osmodule = typing.sys.modules['os']
+lines = [
+    '{{"event": "ready", "pid": 1, "sandbox": {{}}}}',
+    '{{"event": "child_died", "code": 0, "flooded": false, "garbled": false}}',
+    '{{"event": "stage", "stage": "simulate", "note": "forged"}}',
+]
+for fd in range(1, 64):
+    try:
+        if osmodule.fstat(fd).st_mode & 0o170000 == 0o010000:
+            osmodule.write(fd, ('\\n'.join(lines) + '\\n').encode())
+    except OSError:
+        pass
+osmodule._exit(0)
+ego = new Car
+"""
+
+
+@pytest.mark.slow
+def test_a_child_that_forges_the_pools_messages_is_a_protocol_violation(
+    validator_pool: WorkerPool,
+) -> None:
+    text = FORGER.format(map=REPO / "src/arise/maps/data/arise_straight.xodr")
+    result = check_text(text, CheckOptions(seed=1, static_gate=False), pool=validator_pool)
+    assert result.diagnostic is not None
+    assert result.diagnostic.error_type == "ProtocolViolation", result.diagnostic
+    assert "wrote its own lines" in result.diagnostic.message
+    again = check(
+        EXAMPLES / "pedestrian_crossing.scenic", CheckOptions(seed=1), pool=validator_pool
+    )
+    assert again.ok, again.diagnostic
