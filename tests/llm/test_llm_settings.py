@@ -153,6 +153,7 @@ def _run_cli(
     )
 
 
+@pytest.mark.slow  # a new `arise` process (about 2 s)
 def test_cli_missing_key_is_one_line(tmp_path: Path) -> None:
     result = _run_cli("ping", "--provider", "openai", tmp_path=tmp_path)
     assert result.returncode == 1
@@ -162,6 +163,7 @@ def test_cli_missing_key_is_one_line(tmp_path: Path) -> None:
     assert "OPENAI_API_KEY" in lines[0] and "Traceback" not in result.stderr
 
 
+@pytest.mark.slow  # a new `arise` process (about 2 s)
 def test_cli_unreachable_server_is_one_line(tmp_path: Path) -> None:
     import socket
 
@@ -182,6 +184,7 @@ def test_cli_unreachable_server_is_one_line(tmp_path: Path) -> None:
     assert "cannot reach" in lines[0] and "ARISE_BASE_URL" in lines[0]
 
 
+@pytest.mark.slow  # a new `arise` process (about 2 s)
 def test_cli_info_shows_key_state_not_values(tmp_path: Path) -> None:
     env_key = "sk-test-1234567890abcdefghij"
     os.environ["OPENAI_API_KEY"] = env_key
@@ -223,6 +226,7 @@ def test_threads_auto(monkeypatch: pytest.MonkeyPatch) -> None:
     assert load_settings().profile("local").threads == 0
 
 
+@pytest.mark.slow  # a new `arise` process (about 2 s)
 def test_cli_missing_local_model_says_how_to_get_it(tmp_path: Path) -> None:
     result = _run_cli("ping", tmp_path=tmp_path, extra={"ARISE_MODELS_DIR": str(tmp_path)})
     assert result.returncode == 1

@@ -50,6 +50,7 @@ def test_failed_check_exits_1_with_a_readable_diagnostic() -> None:
     assert "parse" in run.stdout and "line 20" in run.stdout and "new" in run.stdout
 
 
+@pytest.mark.slow  # a new `arise` process each (about 2 s)
 def test_missing_file_is_a_clear_error(tmp_path: Path) -> None:
     run = arise("check", str(tmp_path / "nope.scenic"), "--json")
     assert run.returncode == 1
@@ -57,6 +58,7 @@ def test_missing_file_is_a_clear_error(tmp_path: Path) -> None:
     assert "Traceback" not in run.stderr
 
 
+@pytest.mark.slow  # a new `arise` process each (about 2 s)
 def test_empty_and_garbage_scripts(tmp_path: Path) -> None:
     empty = tmp_path / "empty.scenic"
     empty.write_text("   \n")
@@ -68,6 +70,7 @@ def test_empty_and_garbage_scripts(tmp_path: Path) -> None:
     assert run.returncode == 1 and "UTF-8" in json.loads(run.stdout)["diagnostic"]["message"]
 
 
+@pytest.mark.slow  # a new `arise` process each (about 2 s)
 def test_bad_option_and_bad_map_dir_exit_2(tmp_path: Path) -> None:
     script = str(EXAMPLES / "pedestrian_crossing.scenic")
     assert arise("check", script, "--simulator", "gazebo").returncode == 2
@@ -81,6 +84,7 @@ def _free_port() -> int:
         return int(probe.getsockname()[1])
 
 
+@pytest.mark.slow  # a new `arise` process each (about 2 s)
 def test_unreachable_carla_fails_within_seconds() -> None:
     started = time.monotonic()
     run = arise(
@@ -98,6 +102,7 @@ def test_unreachable_carla_fails_within_seconds() -> None:
     assert "--carla-host" in diagnostic["message"]
 
 
+@pytest.mark.slow  # a new `arise` process each (about 2 s)
 def test_maps_list_shows_our_maps() -> None:
     run = arise("maps", "list")
     assert run.returncode == 0

@@ -138,11 +138,14 @@ def _point(**changes: Any) -> dict[str, Any]:
         _facts(agents=[_agent(name="../../etc")]),
         _facts(agents=[_agent(name=f"a{i}") for i in range(MAX_AGENTS + 1)]),
         _facts(agents=[_agent(trajectory=[_point(step=0)] * (MAX_TRACE_POINTS + 1))]),
-        _facts(
-            agents=[
-                _agent(name=f"a{i}", trajectory=[_point()] * MAX_TRACE_POINTS)
-                for i in range(MAX_TOTAL_POINTS // MAX_TRACE_POINTS + 1)
-            ]
+        pytest.param(  # half a million points: seconds to build and validate
+            _facts(
+                agents=[
+                    _agent(name=f"a{i}", trajectory=[_point()] * MAX_TRACE_POINTS)
+                    for i in range(MAX_TOTAL_POINTS // MAX_TRACE_POINTS + 1)
+                ]
+            ),
+            marks=pytest.mark.slow,
         ),
         _facts(events=[{"step": 1, "payload": {"nested": "dict"}}]),
         _facts(events=[{"step": 1}] * 10_001),
