@@ -71,10 +71,9 @@ from arise.validate.types import (
 
 Emit = Callable[[WorkerMessage], None]
 OFFLINE_MODEL = "arise.validate.worldmodel.model"
-SOFT_TIMEOUT_GRACE = (
-    3.0  # our own interrupt comes this long before the time limit (the parent kills
-)
-# KILL_GRACE after it): a loaded machine once needed more than the 5 s that 2.0 left
+# Our own interrupt comes this long before the time limit (the parent kills KILL_GRACE
+# after it): a loaded machine once needed more than the 5 s that 2.0 left.
+SOFT_TIMEOUT_GRACE = 3.0
 MESSAGE_LIMIT_BYTES = 64 * 1024 * 1024  # a child's message longer than this is a flood
 
 
