@@ -58,7 +58,9 @@ def write_text_atomic(path: Path, text: str, mode: int = OUTPUT_MODE) -> Path:
     return write_bytes_atomic(path, text.encode("utf-8"), mode)
 
 
-def copy_file_atomic(source: Path, target: Path, chunk: int = 1024 * 1024) -> Path:
+def copy_file_atomic(
+    source: Path, target: Path, chunk: int = 1024 * 1024, mode: int = OUTPUT_MODE
+) -> Path:
     """Copy a file we chose (e.g. a map from our cache) in chunks, whole or not at all."""
 
     def chunks() -> Iterable[bytes]:
@@ -66,4 +68,4 @@ def copy_file_atomic(source: Path, target: Path, chunk: int = 1024 * 1024) -> Pa
             while block := handle.read(chunk):
                 yield block
 
-    return write_chunks_atomic(target, chunks())
+    return write_chunks_atomic(target, chunks(), mode)

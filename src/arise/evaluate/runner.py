@@ -14,6 +14,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from arise.atomic import write_text_atomic
 from arise.errors import AriseError
 from arise.evaluate.criticality import criticality
 from arise.evaluate.prompt_file import BenchPrompt
@@ -130,9 +131,7 @@ def add_to_report(path: Path, key: str, value: Any) -> None:
         return
     report = json.loads(path.read_text(encoding="utf-8"))
     report[key] = value
-    temporary = path.with_suffix(".json.tmp")
-    temporary.write_text(json.dumps(report, indent=2, default=str), encoding="utf-8")
-    os.replace(temporary, path)
+    write_text_atomic(path, json.dumps(report, indent=2, default=str))
 
 
 class TaskRunner:

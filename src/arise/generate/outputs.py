@@ -1,28 +1,24 @@
 """What a generation leaves on disk: the script, the report, the picture, every attempt.
 
-Files are written atomically (temporary file + rename), and the report is rewritten after
-every attempt, so an interrupted run or a provider failure loses nothing already done.
+Files are written whole (`arise.atomic`), and the report is rewritten after every attempt,
+so an interrupted run or a provider failure loses nothing already done.
 """
 
 from __future__ import annotations
 
 import json
-import os
-import tempfile
 from pathlib import Path
 from typing import Any
 
+from arise.atomic import copy_file_atomic, write_text_atomic
+
+#: A run's files stay private to the user, as they always were (mkstemp's mode).
+RUN_FILE_MODE = 0o600
+
 
 def write_atomic(path: Path, text: str) -> None:
-    path.parent.mkdir(parents=True, exist_ok=True)
-    handle, temporary = tempfile.mkstemp(prefix=f".{path.name}.", dir=path.parent)
-    try:
-        with os.fdopen(handle, "w", encoding="utf-8") as out:
-            out.write(text)
-        os.replace(temporary, path)
-    finally:
-        if os.path.exists(temporary):
-            os.unlink(temporary)
+    """One file of a run, whole or not at all (OutputError naming the folder otherwise)."""
+    write_text_atomic(path, text, RUN_FILE_MODE)
 
 
 def write_report(folder: Path, report: dict[str, Any]) -> None:
@@ -59,11 +55,4 @@ def write_scene_picture(folder: Path, picture: Path) -> None:
     if not picture.is_file():
         target.unlink(missing_ok=True)
         return
-    handle, temporary = tempfile.mkstemp(prefix=".scene.png.", dir=folder)
-    try:
-        with os.fdopen(handle, "wb") as out:
-            out.write(picture.read_bytes())
-        os.replace(temporary, target)
-    finally:
-        if os.path.exists(temporary):
-            os.unlink(temporary)
+    copy_file_atomic(picture, target, mode=RUN_FILE_MODE)
