@@ -12,7 +12,6 @@ import base64
 import binascii
 import os
 import tempfile
-from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
@@ -23,7 +22,7 @@ from arise.limits import MAX_AGENTS, MAX_STEPS
 from arise.maps.registry import MapError, MapRegistry
 from arise.validate.carla_server import unreachable_reason
 from arise.validate.map_cache import MapPreparationError, prepare_map
-from arise.validate.pool import SandboxRequired, WorkerDied, WorkerPool
+from arise.validate.pool import SandboxRequired, StageCallback, WorkerDied, WorkerPool
 from arise.validate.sandbox import required_by_settings
 from arise.validate.script_info import read_script_info
 from arise.validate.types import (
@@ -56,7 +55,7 @@ def check(
     *,
     pool: WorkerPool | None = None,
     registry: MapRegistry | None = None,
-    on_stage: Callable[[str], None] | None = None,
+    on_stage: StageCallback | None = None,
     **overrides: Any,
 ) -> CheckResult:
     """Gate, compile, sample and simulate one Scenic file in a confined worker.

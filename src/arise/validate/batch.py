@@ -13,8 +13,8 @@ from pathlib import Path
 
 from arise.maps.registry import MapRegistry
 from arise.validate.api import check
-from arise.validate.pool import WorkerPool
-from arise.validate.types import CheckOptions, CheckResult
+from arise.validate.pool import StageCallback, WorkerPool
+from arise.validate.types import CheckOptions, CheckResult, Stage
 
 
 @dataclass(frozen=True)
@@ -26,10 +26,10 @@ class ScriptStarted:
 
 @dataclass(frozen=True)
 class ScriptStage:
-    """The worker checking `script` began a stage (its name comes from the worker)."""
+    """The worker checking `script` began a stage."""
 
     script: Path
-    stage: str
+    stage: Stage
 
 
 @dataclass(frozen=True)
@@ -73,7 +73,7 @@ def check_scripts(
     size = max(1, min(workers, len(scripts)))
     with WorkerPool(size=size, memory_mb=options.memory_mb) as pool:
 
-        def run_one(script: Path, on_stage: Callable[[str], None] | None = None) -> CheckResult:
+        def run_one(script: Path, on_stage: StageCallback | None = None) -> CheckResult:
             per_script = options.model_copy(update={"png": png_target(png, script, many)})
             return check(script, per_script, pool=pool, registry=registry, on_stage=on_stage)
 
@@ -86,7 +86,7 @@ def check_scripts(
         for script in scripts:
             emit(ScriptStarted(script))
 
-            def stage(name: str, script: Path = script) -> None:
+            def stage(name: Stage, script: Path = script) -> None:
                 emit(ScriptStage(script, name))
 
             result = run_one(script, stage if on_event is not None else None)
