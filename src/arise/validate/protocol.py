@@ -67,7 +67,7 @@ class ChildDied(_Message):
 WorkerMessage = Ready | StageEntered | Result | ChildDied
 # Validated by its `event` first: an unknown event is refused by name, not by each shape.
 _WORKER_MESSAGES: TypeAdapter[WorkerMessage] = TypeAdapter(
-    Annotated[WorkerMessage, Field(discriminator="event")]  # type: ignore[arg-type]
+    Annotated[WorkerMessage, Field(discriminator="event")]  # type: ignore[arg-type, maybe-unrecognized-str-typeform]
 )
 
 
