@@ -94,10 +94,10 @@ class Broken(_Message):
 FromProcess = Ready | Run | Done | Failed
 ToProcess = Check | Ran | Died | Refused | Broken
 _FROM_PROCESS: TypeAdapter[FromProcess] = TypeAdapter(
-    Annotated[FromProcess, Field(discriminator="op")]  # type: ignore[arg-type, maybe-unrecognized-str-typeform]
+    Annotated[FromProcess, Field(discriminator="op")]  # type: ignore  # see protocol.py
 )
 _TO_PROCESS: TypeAdapter[ToProcess] = TypeAdapter(
-    Annotated[ToProcess, Field(discriminator="op")]  # type: ignore[arg-type, maybe-unrecognized-str-typeform]
+    Annotated[ToProcess, Field(discriminator="op")]  # type: ignore  # see protocol.py
 )
 
 

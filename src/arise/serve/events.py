@@ -74,7 +74,7 @@ class DoneEvent(_Event):
 
 JobEvent = StateEvent | StageEvent | AttemptEvent | DoneEvent
 _JOB_EVENTS: TypeAdapter[JobEvent] = TypeAdapter(
-    Annotated[JobEvent, Field(discriminator="event")]  # type: ignore[arg-type, maybe-unrecognized-str-typeform]
+    Annotated[JobEvent, Field(discriminator="event")]  # type: ignore  # see protocol.py
 )
 
 
