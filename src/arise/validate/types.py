@@ -24,6 +24,7 @@ from pydantic import (
     model_validator,
 )
 
+from arise.agents.types import MAX_SIGNALS, EgoRoute, SignalTrace
 from arise.limits import (
     MAX_AGENTS,
     MAX_EVENT_FIELDS,
@@ -273,6 +274,12 @@ class SimulationFacts(Strict):
     events: list[Event] = Field(default_factory=list, max_length=MAX_EVENTS)
     # Global parameters of the scene that ran (weather, OPT_* values), as text.
     params: dict[Name, Message] = Field(default_factory=dict, max_length=MAX_PARAMS)
+    # The ego's route (None: no ego, or no road network to read it from).
+    route: EgoRoute | None = None
+    # Who drove the ego: an agent spec (`idm`, `my_agent.py:Mine`); None: its script.
+    agent: Annotated[str, StringConstraints(min_length=1, max_length=MAX_NAME)] | None = None
+    # The map's traffic lights and stop signs, with every change of state.
+    signals: list[SignalTrace] = Field(default_factory=list, max_length=MAX_SIGNALS)
 
     @model_validator(mode="after")
     def _bounded_in_total(self) -> SimulationFacts:
@@ -304,6 +311,10 @@ class CheckOptions(BaseModel):
     require_sandbox: bool = False
     # Skip the static gate (tests use it to prove the OS-level confinement holds alone).
     static_gate: bool = True
+    # Who drives the ego: None (or "scripted") the script's own behavior; a built-in
+    # (`idm`, `cautious`, `blind`), `path/to/agent.py:ClassName` or an entry point of
+    # the `arise.agents` group (docs/agents.md).
+    agent: str | None = None
 
 
 class WorkerResult(Strict):
