@@ -23,53 +23,136 @@ class AdversaryType(StrEnum):
     PEDESTRIAN = "pedestrian"
 
     @property
-    def scenic_class(self) -> str:
+    def scenic_class(self) -> ActorClass:
         """The CARLA model's class for it (`new Car`, `new Pedestrian`, ...)."""
-        return self.value.capitalize()
+        return ActorClass(self.value.capitalize())
 
+
+class ActorGroup(StrEnum):
+    """How consumers tell the classes apart: what a renderer draws, what an exporter
+    declares and what a check may ask of an actor (a walker has no throttle, a prop no
+    route)."""
+
+    VEHICLE = "vehicle"  # four-wheeled motor vehicles
+    TWO_WHEELER = "two_wheeler"  # motorcycles and bicycles: steered like vehicles, slimmer
+    WALKER = "walker"  # pedestrians
+    PROP = "prop"  # static objects
+
+
+class ActorClass(StrEnum):
+    """Every class of CARLA's Scenic model (and our offline world model) that a script may
+    create for a road user or a prop; its value is the class name in `new X`.
+
+    Code outside the extraction schema compares these, never bare class-name strings."""
+
+    CAR = "Car"
+    NPC_CAR = "NPCCar"
+    TRUCK = "Truck"
+    VAN = "Van"
+    BUS = "Bus"
+    MOTORCYCLE = "Motorcycle"
+    BICYCLE = "Bicycle"
+    PEDESTRIAN = "Pedestrian"
+    TRASH = "Trash"
+    CONE = "Cone"
+    DEBRIS = "Debris"
+    VENDING_MACHINE = "VendingMachine"
+    CHAIR = "Chair"
+    BUS_STOP = "BusStop"
+    ADVERTISEMENT = "Advertisement"
+    GARBAGE = "Garbage"
+    CONTAINER = "Container"
+    TABLE = "Table"
+    BARRIER = "Barrier"
+    PLANT_POT = "PlantPot"
+    MAILBOX = "Mailbox"
+    GNOME = "Gnome"
+    CREASED_BOX = "CreasedBox"
+    CASE = "Case"
+    BOX = "Box"
+    BENCH = "Bench"
+    BARREL = "Barrel"
+    ATM = "ATM"
+    KIOSK = "Kiosk"
+    IRON_PLATE = "IronPlate"
+    TRAFFIC_WARNING = "TrafficWarning"
+
+    @classmethod
+    def of(cls, name: str) -> ActorClass | None:
+        """The member named `name` (a class name from a script, a trace or an entry), or
+        None for anything else (Scenic's own Object/Point, a typo, an untrusted value)."""
+        try:
+            return cls(name)
+        except ValueError:
+            return None
+
+    @property
+    def group(self) -> ActorGroup:
+        """Which group the class belongs to."""
+        return _GROUPS.get(self, ActorGroup.PROP)
+
+    @property
+    def is_vehicle(self) -> bool:
+        """A wheeled road user: cars, trucks, vans, buses, motorcycles and bicycles."""
+        return self.group in (ActorGroup.VEHICLE, ActorGroup.TWO_WHEELER)
+
+    @property
+    def is_two_wheeler(self) -> bool:
+        return self.group is ActorGroup.TWO_WHEELER
+
+    @property
+    def is_walker(self) -> bool:
+        return self.group is ActorGroup.WALKER
+
+    @property
+    def is_prop(self) -> bool:
+        return self.group is ActorGroup.PROP
+
+    @property
+    def is_road_user(self) -> bool:
+        """Moves in traffic (a vehicle or a walker), as against a prop."""
+        return not self.is_prop
+
+    @property
+    def is_adversary(self) -> bool:
+        """One of the classes an extracted adversary may have (see AdversaryType)."""
+        return self in ADVERSARY_CLASSES
+
+    @property
+    def as_adversary(self) -> ActorClass:
+        """The class whose knowledge-base entries act it out: a van drives like a car, a
+        bus like a truck; every other class is itself."""
+        return _REFINED.get(self, self)
+
+
+_GROUPS: dict[ActorClass, ActorGroup] = {
+    ActorClass.CAR: ActorGroup.VEHICLE,
+    ActorClass.NPC_CAR: ActorGroup.VEHICLE,
+    ActorClass.TRUCK: ActorGroup.VEHICLE,
+    ActorClass.VAN: ActorGroup.VEHICLE,
+    ActorClass.BUS: ActorGroup.VEHICLE,
+    ActorClass.MOTORCYCLE: ActorGroup.TWO_WHEELER,
+    ActorClass.BICYCLE: ActorGroup.TWO_WHEELER,
+    ActorClass.PEDESTRIAN: ActorGroup.WALKER,
+}  # every other member is a prop
+_REFINED: dict[ActorClass, ActorClass] = {
+    ActorClass.VAN: ActorClass.CAR,
+    ActorClass.BUS: ActorClass.TRUCK,
+}
+
+
+# The tuples below are ActorClass's groupings as plain names, for code that matches text
+# (regexes, lints, the rules' class list) and for what recorded cassettes hold.
 
 #: Classes an adversary may have (the scenic_class of each AdversaryType, in order).
-ADVERSARY_CLASSES: tuple[str, ...] = tuple(kind.scenic_class for kind in AdversaryType)
+ADVERSARY_CLASSES: tuple[str, ...] = tuple(kind.scenic_class.value for kind in AdversaryType)
 #: Classes a description may name for an adversary, and the class whose entries fit them
 #: (a van drives like a car, a bus like a truck).
-REFINED_CLASSES: dict[str, str] = {"Van": "Car", "Bus": "Truck"}
+REFINED_CLASSES: dict[str, str] = {cls.value: cls.as_adversary.value for cls in _REFINED}
 #: Classes of road users in CARLA's Scenic model (and in our offline world model).
-ACTOR_CLASSES: tuple[str, ...] = (
-    "Car",
-    "NPCCar",
-    "Truck",
-    "Van",
-    "Bus",
-    "Motorcycle",
-    "Bicycle",
-    "Pedestrian",
-)
+ACTOR_CLASSES: tuple[str, ...] = tuple(cls.value for cls in ActorClass if cls.is_road_user)
 #: Static objects of CARLA's Scenic model.
-PROP_CLASSES: tuple[str, ...] = (
-    "Trash",
-    "Cone",
-    "Debris",
-    "VendingMachine",
-    "Chair",
-    "BusStop",
-    "Advertisement",
-    "Garbage",
-    "Container",
-    "Table",
-    "Barrier",
-    "PlantPot",
-    "Mailbox",
-    "Gnome",
-    "CreasedBox",
-    "Case",
-    "Box",
-    "Bench",
-    "Barrel",
-    "ATM",
-    "Kiosk",
-    "IronPlate",
-    "TrafficWarning",
-)
+PROP_CLASSES: tuple[str, ...] = tuple(cls.value for cls in ActorClass if cls.is_prop)
 #: Scenic's own classes a script may create.
 POINT_CLASSES: tuple[str, ...] = ("Object", "Point", "OrientedPoint")
 
