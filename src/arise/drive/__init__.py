@@ -1,0 +1,1 @@
+"""Driving agents under test: `arise drive`, its metrics, store, runner and report."""

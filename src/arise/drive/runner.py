@@ -1,0 +1,234 @@
+"""Resumable drive: scenarios x runs, each checked in the confined validator with the
+agent in the ego's seat, measured, and its collision replayed.
+
+Runs already in the database are skipped, so a killed drive resumes where it stopped.
+The local executor shares one pool of confined workers between `workers` threads (the
+simulation runs in the workers; a thread waits, measures and draws); the Ray executor
+gives each actor a pool of its own. The parent alone writes the database.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import time
+from collections.abc import Callable, Iterator, Sequence
+from concurrent.futures import ThreadPoolExecutor, as_completed
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+from arise.drive.agent_names import agent_label
+from arise.drive.measure import measure
+from arise.drive.records import DriveRecord, DriveStatus, DriveTask
+from arise.drive.sources import Scenario, safe_part
+from arise.drive.store import DriveStore
+from arise.errors import AriseError
+from arise.present.replay import write_replay
+from arise.present.source import Origin, TraceSource
+from arise.validate import CheckOptions, WorkerPool, check
+from arise.validate.types import CheckResult
+
+EXECUTORS = ("local", "ray")
+COLLISIONS = "collisions"
+#: Simulated steps of a drive (as `arise check`): long enough for most routes.
+DRIVE_STEPS = 300
+
+
+class ExecutorUnavailable(AriseError):
+    """The drive cannot run on the executor asked for (unknown, or Ray is missing)."""
+
+
+OnRecord = Callable[[DriveRecord], None]
+
+
+@dataclass
+class DriveConfig:
+    agent: str  # as `resolve_agent` gave it
+    runs: int = 1
+    seed: int = 0
+    workers: int = 1
+    executor: str = "local"
+    map_dir: str | None = None
+    steps: int = DRIVE_STEPS
+    timeout: float = 60.0
+    ray_address: str | None = None
+
+    def check_options(self, seed: int | None) -> CheckOptions:
+        return CheckOptions(
+            seed=seed,
+            map_dir=self.map_dir,
+            steps=self.steps,
+            timeout=self.timeout,
+            agent=self.agent,
+        )
+
+
+def check_executor(executor: str) -> None:
+    if executor not in EXECUTORS:
+        raise ExecutorUnavailable(f"--executor is one of {', '.join(EXECUTORS)}")
+
+
+def plan(scenarios: Sequence[Scenario], config: DriveConfig) -> list[DriveTask]:
+    """Every run in a stable order: run by run, so an early stop covers every scenario."""
+    return [
+        DriveTask.of(scenario, config.agent, run, config.seed + run)
+        for run in range(config.runs)
+        for scenario in scenarios
+    ]
+
+
+def pending(tasks: Sequence[DriveTask], store: DriveStore) -> list[DriveTask]:
+    done = store.done_keys()
+    return [task for task in tasks if task.key not in done]
+
+
+def replay_folder(task: DriveTask) -> str:
+    """Where a run's collision replay goes, below the drive's folder."""
+    scenario = "-".join(safe_part(part, "x") for part in task.scenario.split("/"))
+    agent = safe_part(agent_label(task.agent).replace(":", "-"), "agent")
+    return f"{COLLISIONS}/{scenario}-{agent}-r{task.run_index}"
+
+
+def drive_one(task: DriveTask, config: DriveConfig, pool: WorkerPool, out: Path) -> DriveRecord:
+    """Check the task's script with the agent; a run that drove gets its metrics, and its
+    replay when it collided. Never raises for a bad script."""
+    started = time.perf_counter()
+    options = config.check_options(task.seed)
+    result = check(Path(task.script), options, pool=pool)
+    record = DriveRecord(
+        task=task,
+        status=DriveStatus.FAILED,
+        sandbox=result.sandbox.label if result.sandbox else None,
+        map=result.map.name if result.map else None,
+    )
+    if not result.ok or result.simulation is None:
+        record.message = result.diagnostic.one_line() if result.diagnostic else "did not run"
+    else:
+        timeout_s = options.steps * result.simulation.timestep
+        record.timeout_s = round(timeout_s, 3)
+        try:
+            record.metrics = measure(result, timeout_s)
+            record.status = DriveStatus.DRIVEN
+        except AriseError as error:
+            record.message = f"cannot measure: {error}"
+        if record.collided:
+            record.replay = _replay(task, result, options, out)
+    record.seconds = round(time.perf_counter() - started, 3)
+    return record
+
+
+def _replay(task: DriveTask, result: CheckResult, options: CheckOptions, out: Path) -> str | None:
+    """The collision's replay (the ego's whole path drawn), or None when it cannot be drawn."""
+    assert result.simulation is not None
+    folder = replay_folder(task)
+    source = TraceSource(
+        script=Path(task.script),
+        simulation=result.simulation,
+        map=result.map,
+        origin=Origin.CHECKED,
+        seed=options.seed,
+        steps=options.steps,
+    )
+    try:
+        files = write_replay(source, out / folder, map_dir=options.map_dir)
+    except AriseError:
+        return None
+    return str(files.gif.relative_to(out))
+
+
+# -- executors ------------------------------------------------------------------------------
+
+
+def run_local(tasks: Sequence[DriveTask], config: DriveConfig, out: Path) -> Iterator[DriveRecord]:
+    if not tasks:
+        return
+    workers = max(1, config.workers)
+    with WorkerPool(size=workers) as pool:
+        if workers == 1:
+            for task in tasks:
+                yield drive_one(task, config, pool, out)
+            return
+        with ThreadPoolExecutor(max_workers=workers, thread_name_prefix="drive") as threads:
+            futures = [threads.submit(drive_one, task, config, pool, out) for task in tasks]
+            try:
+                for future in as_completed(futures):
+                    yield future.result()
+            finally:
+                for future in futures:
+                    future.cancel()
+
+
+class _RayActor:
+    """drive_one inside a Ray actor, with a worker pool of its own."""
+
+    def __init__(self, config_json: str, out: str):
+        self.config = DriveConfig(**json.loads(config_json))
+        self.out = Path(out)
+        self.pool = WorkerPool(size=1)
+
+    def run(self, task_json: str) -> str:
+        task = DriveTask.model_validate_json(task_json)
+        return drive_one(task, self.config, self.pool, self.out).model_dump_json()
+
+
+def run_ray(tasks: Sequence[DriveTask], config: DriveConfig, out: Path) -> Iterator[DriveRecord]:
+    try:
+        import ray
+        from ray.util import ActorPool
+    except ImportError as error:
+        raise ExecutorUnavailable("the Ray executor needs Ray: pip install 'arise[ray]'") from error
+    if not tasks:
+        return
+    started_here = not ray.is_initialized()
+    if started_here:
+        ray.init(
+            address=config.ray_address,
+            include_dashboard=False,
+            log_to_driver=False,
+            ignore_reinit_error=True,
+            runtime_env={
+                "env_vars": {k: v for k, v in os.environ.items() if k.startswith("ARISE_")}
+            },
+        )
+    try:
+        actor_class = ray.remote(num_cpus=1)(_RayActor)
+        config_json = json.dumps(config.__dict__)
+        actors = [actor_class.remote(config_json, str(out)) for _ in range(max(1, config.workers))]
+        pool = ActorPool(actors)
+        payloads = [task.model_dump_json() for task in tasks]
+        for result in pool.map_unordered(
+            lambda actor, payload: actor.run.remote(payload), payloads
+        ):
+            yield DriveRecord.model_validate_json(result)
+    finally:
+        if started_here:
+            ray.shutdown()
+
+
+def run_drive(
+    tasks: Sequence[DriveTask],
+    config: DriveConfig,
+    store: DriveStore,
+    out: Path,
+    on_record: OnRecord | None = None,
+) -> list[DriveRecord]:
+    """Run what the database does not hold yet; every finished run is saved at once."""
+    check_executor(config.executor)
+    store.set_meta(agent=config.agent, runs=config.runs, seed=config.seed, steps=config.steps)
+    todo = pending(tasks, store)
+    executor = run_ray if config.executor == "ray" else run_local
+    finished: list[DriveRecord] = []
+    for record in executor(todo, config, out):
+        store.save(record)
+        finished.append(record)
+        if on_record is not None:
+            on_record(record)
+    return finished
+
+
+def planned_records(tasks: Sequence[DriveTask], store: DriveStore) -> list[DriveRecord]:
+    """The database's runs of this plan, in plan order (runs of other agents, seeds or
+    older scripts in the same database are left out)."""
+    by_key: dict[Any, DriveRecord] = {r.task.key: r for r in store.records()}
+    return [by_key[task.key] for task in tasks if task.key in by_key]
