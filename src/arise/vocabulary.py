@@ -78,9 +78,12 @@ class ActorClass(StrEnum):
     TRAFFIC_WARNING = "TrafficWarning"
 
     @classmethod
-    def of(cls, name: str) -> ActorClass | None:
-        """The member named `name` (a class name from a script, a trace or an entry), or
-        None for anything else (Scenic's own Object/Point, a typo, an untrusted value)."""
+    def of(cls, name: object) -> ActorClass | None:
+        """The member named `name` (a class name from a script, a trace, a label or an
+        entry), or None for anything else (Scenic's own Object/Point, a typo, a value of
+        the wrong type: untrusted input never raises here)."""
+        if not isinstance(name, str):
+            return None
         try:
             return cls(name)
         except ValueError:

@@ -48,6 +48,7 @@ from arise.vocabulary import (
     POINT_CLASSES,
     PROP_CLASSES,
     WEATHER_PRESETS,
+    ActorClass,
     ActorRole,
     EgoManeuver,
     Side,
@@ -64,7 +65,7 @@ DEVSET_DIR = Path(__file__).resolve().parent / "devsets"
 #: Classes a label may name: road users and props of CARLA's Scenic model.
 LABEL_CLASSES: tuple[str, ...] = ACTOR_CLASSES + PROP_CLASSES
 # A subclass the text cannot tell from its parent.
-_CLASS_ALIASES = {"NPCCar": "Car"}
+_CLASS_ALIASES = {ActorClass.NPC_CAR: ActorClass.CAR}
 
 
 class DevsetError(AriseError):
@@ -158,15 +159,21 @@ class FactKind(StrEnum):
 class LabeledActor:
     """One kind of road user (or hazard prop) the text names, `count` of them."""
 
-    cls: str
+    cls: ActorClass
     count: int = 1
     role: Role | None = None
     start: Start | None = None
     direction: Direction | None = None
 
+    def __post_init__(self) -> None:
+        cls = ActorClass.of(self.cls)  # also when given as text
+        if cls is None:
+            raise DevsetError("actor: " + _unknown("class", self.cls, LABEL_CLASSES))
+        object.__setattr__(self, "cls", cls)
+
     def as_dict(self) -> dict[str, Any]:
         return {
-            "class": self.cls,
+            "class": self.cls.value,
             "count": self.count,
             "role": self.role.value if self.role else None,
             "start": self.start.value if self.start else None,
@@ -253,18 +260,18 @@ def _parse_actor(data: object, where: str, problems: list[str]) -> LabeledActor 
         return None
     for key in sorted(set(data) - _ACTOR_KEYS):
         problems.append(f"{where}: unknown key {key!r}")
-    cls = data.get("class")
-    if cls not in LABEL_CLASSES:
-        problems.append(f"{where}.class: " + _unknown("class", cls, LABEL_CLASSES))
+    cls = ActorClass.of(data.get("class"))
+    if cls is None:
+        problems.append(f"{where}.class: " + _unknown("class", data.get("class"), LABEL_CLASSES))
     count = data.get("count", 1)
     if not isinstance(count, int) or isinstance(count, bool) or count < 1:
         problems.append(f"{where}.count: must be a whole number >= 1, got {count!r}")
     role = _enum(Role, data.get("role"), f"{where}.role", problems)
     start = _enum(Start, data.get("start"), f"{where}.start", problems)
     direction = _enum(Direction, data.get("direction"), f"{where}.direction", problems)
-    if cls not in LABEL_CLASSES or not isinstance(count, int) or count < 1:
+    if cls is None or not isinstance(count, int) or count < 1:
         return None
-    return LabeledActor(cls=str(cls), count=count, role=role, start=start, direction=direction)
+    return LabeledActor(cls=cls, count=count, role=role, start=start, direction=direction)
 
 
 def _parse_truth(data: object) -> tuple[Truth | None, list[str]]:
@@ -467,15 +474,15 @@ def _lateral(origin: TracePoint, point: TracePoint) -> float:
 
 
 @cache
-def _blueprint_classes() -> dict[str, str]:
+def _blueprint_classes() -> dict[str, ActorClass]:
     """CARLA blueprint -> our class name, from Scenic's table (a firetruck is a Truck even
     when the script says `new Car`). Imported on first use: it pulls in Scenic."""
     try:
         import scenic.simulators.carla.blueprints as table
     except ImportError:  # pragma: no cover - Scenic is a dependency
         return {}
-    by_lower = {name.lower(): name for name in LABEL_CLASSES} | {"walker": "Pedestrian"}
-    classes: dict[str, str] = {}
+    by_lower = {cls.value.lower(): cls for cls in ActorClass} | {"walker": ActorClass.PEDESTRIAN}
+    classes: dict[str, ActorClass] = {}
     for attribute in dir(table):
         category = attribute.removesuffix("Models").lower()
         models = getattr(table, attribute)
@@ -488,13 +495,15 @@ def _blueprint_classes() -> dict[str, str]:
     return classes
 
 
-def observed_class(agent: AgentTrace) -> str:
-    """What the agent is in the scene: its blueprint's category, else its Scenic class."""
+def observed_class(agent: AgentTrace) -> ActorClass | str:
+    """What the agent is in the scene: its blueprint's category, else its Scenic class
+    (as the trace names it when the vocabulary has no such class)."""
     if agent.blueprint:
         found = _blueprint_classes().get(agent.blueprint)
         if found:
             return found
-    return _CLASS_ALIASES.get(agent.kind, agent.kind)
+    cls = ActorClass.of(agent.kind)
+    return agent.kind if cls is None else _CLASS_ALIASES.get(cls, cls)
 
 
 @dataclass(frozen=True)

@@ -21,7 +21,9 @@ from __future__ import annotations
 
 import re
 
+from arise.errors import AriseError
 from arise.kb.schema import Component, Entry
+from arise.vocabulary import ActorClass
 
 ADVERSARY_NAME = "adversary"
 ADVERSARY_BEHAVIOR = "AdversaryBehavior"
@@ -34,6 +36,10 @@ _PARAM_RANGE = re.compile(
     re.M,
 )
 ACTOR_PATTERN = re.compile(r"^actor[0-9]+$")
+
+
+class ActorCopyError(AriseError, ValueError):
+    """An entry cannot be copied for that actor (a caller's mistake, not the entry's)."""
 
 
 def actor_name(name: str, actor: str) -> str:
@@ -60,7 +66,7 @@ def _is_actor_own(name: str) -> bool:
 
 
 def for_actor(
-    entry: Entry, actor: str, scenic_class: str, *, copy: int = 0, spacing: float = 0.0
+    entry: Entry, actor: str, scenic_class: ActorClass, *, copy: int = 0, spacing: float = 0.0
 ) -> Entry:
     """A copy of a spawn or behavior `entry` that places or moves `actor` instead of the
     adversary (see the module's docstring).
@@ -70,9 +76,12 @@ def for_actor(
     further out, so that copies stand in a row instead of on top of each other.
     """
     if entry.component not in (Component.SPAWN, Component.BEHAVIOR):
-        raise ValueError(f"{entry.id}: only spawn and behavior entries place an actor")
+        raise ActorCopyError(f"{entry.id}: only spawn and behavior entries place an actor")
     if not ACTOR_PATTERN.match(actor):
-        raise ValueError(f"{actor!r} is not an actor name like 'actor2'")
+        raise ActorCopyError(f"{actor!r} is not an actor name like 'actor2'")
+    cls = ActorClass.of(scenic_class)
+    if cls is None or not cls.is_road_user:
+        raise ActorCopyError(f"{scenic_class!s} is not a road user's class")
     renames = {name: actor_name(name, actor) for name in entry.defines}
     renames |= {name: actor_name(name, actor) for name in entry.needs if _is_actor_own(name)}
     renames.setdefault(ADVERSARY_BEHAVIOR, actor_name(ADVERSARY_BEHAVIOR, actor))
@@ -84,7 +93,7 @@ def for_actor(
     table = renames | params
     pattern = re.compile(r"\b(" + "|".join(map(re.escape, sorted(table, key=len)[::-1])) + r")\b")
     snippet = pattern.sub(lambda m: table[m.group(1)], snippet)
-    snippet = snippet.replace("{{ADVERSARY_CLASS}}", scenic_class)
+    snippet = snippet.replace("{{ADVERSARY_CLASS}}", cls.value)
     return entry.model_copy(
         update={
             "snippet": snippet,
@@ -93,7 +102,7 @@ def for_actor(
             "params": [params[name] for name in entry.params],
             "placeholders": [p for p in entry.placeholders if p != "ADVERSARY_CLASS"],
             "actor": actor,
-            "actor_class": scenic_class,
+            "actor_class": cls,
         }
     )
 

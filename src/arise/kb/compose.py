@@ -15,7 +15,7 @@ from collections.abc import Iterable, Mapping, Sequence
 from arise.errors import AriseError
 from arise.kb.schema import COMPONENT_ORDER, PLACEHOLDER_PATTERN, Component, Entry
 from arise.sections import MarkerKind, parse_marker, write_section
-from arise.vocabulary import ACTOR_CLASSES, ADVERSARY_CLASSES, REFINED_CLASSES
+from arise.vocabulary import ADVERSARY_CLASSES, ActorClass
 
 SINGLE = (Component.BEHAVIOR, Component.GEOMETRY, Component.SPAWN)  # exactly one each
 OPTIONAL_SINGLE = (Component.WEATHER,)  # at most one
@@ -48,16 +48,19 @@ def header(map_name: str) -> str:
     )
 
 
-def composition_problems(entries: Sequence[Entry], adversary_class: str | None) -> list[str]:
+def composition_problems(entries: Sequence[Entry], adversary_class: ActorClass | None) -> list[str]:
     """Why these entries would not make a script (empty when they would). A scene without
     an adversary (`adversary_class` None) has a geometry and no spawn or behavior."""
     problems: list[str] = []
     if adversary_class is not None:
-        adversary_class = REFINED_CLASSES.get(adversary_class, adversary_class)  # Van ~ Car
-        if adversary_class not in ADVERSARY_CLASSES:
+        known = ActorClass.of(adversary_class)  # also a class name that came in as text
+        if known is None or not known.as_adversary.is_adversary:  # a Van plays a Car
             problems.append(
-                f"adversary class {adversary_class!r} is not one of {', '.join(ADVERSARY_CLASSES)}"
+                f"adversary class {str(adversary_class)!r} is not one of "
+                f"{', '.join(ADVERSARY_CLASSES)}"
             )
+        else:
+            adversary_class = known.as_adversary
     ids = [entry.label for entry in entries]
     for duplicate in sorted({i for i in ids if ids.count(i) > 1}):
         problems.append(f"{duplicate}: chosen twice")
@@ -99,12 +102,12 @@ def _actor_problems(entries: Sequence[Entry]) -> list[str]:
                     f"{', '.join(chosen) if chosen else 'none'}"
                 )
         for entry in mine:
-            cls = entry.actor_class or ""
+            cls = entry.actor_class
             if entry.component not in ADVERSARY_COMPONENTS:
                 problems.append(f"{entry.label}: only spawn and behavior entries place an actor")
-            elif cls not in ACTOR_CLASSES:
-                problems.append(f"{entry.label}: {cls!r} is not a road user's class")
-            elif not entry.suits(REFINED_CLASSES.get(cls, cls)):
+            elif cls is None or not cls.is_road_user:
+                problems.append(f"{entry.label}: {str(cls)!r} is not a road user's class")
+            elif not entry.suits(cls.as_adversary):
                 problems.append(
                     f"{entry.label}: written for {', '.join(entry.adversaries)}, not {cls}"
                 )
@@ -161,7 +164,7 @@ def fill_placeholders(snippet: str, values: Mapping[str, str], entry_id: str) ->
 
 def compose(
     entries: Sequence[Entry],
-    adversary_class: str | None,
+    adversary_class: ActorClass | None,
     map_name: str,
     *,
     description: str | None = None,
@@ -188,7 +191,7 @@ def compose(
         raise ComposeError(problems)
     values = dict(placeholders or {})
     if adversary_class is not None:
-        values.setdefault("ADVERSARY_CLASS", adversary_class)
+        values.setdefault("ADVERSARY_CLASS", str(adversary_class))
     lines: list[str] = []
     if description:
         lines += ["# " + line if line else "#" for line in description.strip().splitlines()]

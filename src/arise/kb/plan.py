@@ -15,11 +15,13 @@ from dataclasses import dataclass, field
 
 from arise.kb.compose import compose, composition_problems, pick_map
 from arise.kb.schema import Component, Entry
-from arise.vocabulary import ADVERSARY_CLASSES
+from arise.vocabulary import ActorClass, AdversaryType
 
 # How many entries of each attachable component one script carries at most. One
 # requirements entry per script: two constraints written separately may exclude each other.
 ATTACH_LIMITS = {Component.WEATHER: 1, Component.MISC: 2, Component.REQUIREMENTS: 1}
+#: The classes the plan rotates through, in AdversaryType's order.
+_ADVERSARIES = tuple(kind.scenic_class for kind in AdversaryType)
 
 
 @dataclass
@@ -28,7 +30,7 @@ class Composition:
 
     name: str
     entries: list[Entry]
-    adversary_class: str
+    adversary_class: ActorClass
     map_name: str
     notes: list[str] = field(default_factory=list)
 
@@ -55,7 +57,7 @@ class Plan:
 
 
 def _fits(
-    entries: Sequence[Entry], adversary: str, maps: Mapping[str, Iterable[str]]
+    entries: Sequence[Entry], adversary: ActorClass, maps: Mapping[str, Iterable[str]]
 ) -> str | None:
     """The map these entries would run on, or None if they do not compose."""
     if composition_problems(entries, adversary):
@@ -70,11 +72,11 @@ class _Planner:
         for entry in entries:
             self.by_component[entry.component].append(entry)
         self.usage: Counter[str] = Counter()
-        self.adversary_usage: Counter[tuple[str, str]] = Counter()
+        self.adversary_usage: Counter[tuple[str, ActorClass]] = Counter()
         self.compositions: list[Composition] = []
 
     def _score(
-        self, target: Entry, core: tuple[Entry, Entry, Entry], adversary: str
+        self, target: Entry, core: tuple[Entry, Entry, Entry], adversary: ActorClass
     ) -> tuple[int, int, int, int]:
         companions = sum(1 for e in core if e.id in target.companions or target.id in e.companions)
         fresh = sum(1 for e in core if self.usage[e.id] == 0)
@@ -82,7 +84,7 @@ class _Planner:
         rotation = sum(self.adversary_usage[(e.id, adversary)] for e in core)
         return (companions, fresh, -rotation, -used)
 
-    def _cores_with(self, target: Entry) -> Iterable[tuple[tuple[Entry, Entry, Entry], str]]:
+    def _cores_with(self, target: Entry) -> Iterable[tuple[tuple[Entry, Entry, Entry], ActorClass]]:
         behaviors = self.by_component[Component.BEHAVIOR]
         geometries = self.by_component[Component.GEOMETRY]
         spawns = self.by_component[Component.SPAWN]
@@ -101,7 +103,7 @@ class _Planner:
                 for behavior in behaviors:
                     if not set(behavior.needs) <= gs_names | set(behavior.defines):
                         continue
-                    for adversary in ADVERSARY_CLASSES:
+                    for adversary in _ADVERSARIES:
                         if spawn.suits(adversary) and behavior.suits(adversary):
                             yield (behavior, geometry, spawn), adversary
 

@@ -11,7 +11,13 @@ from enum import StrEnum
 
 from pydantic import BaseModel, ConfigDict, Field, field_validator, model_validator
 
-from arise.vocabulary import ADVERSARY_CLASSES, MAP_FEATURES, AdversaryManeuver, Approach
+from arise.vocabulary import (
+    ADVERSARY_CLASSES,
+    MAP_FEATURES,
+    ActorClass,
+    AdversaryManeuver,
+    Approach,
+)
 
 
 class Component(StrEnum):
@@ -64,7 +70,7 @@ class Entry(BaseModel):
     placeholders: list[str] = Field(
         default_factory=list, description="{{NAME}} placeholders the assembler fills"
     )
-    adversaries: list[str] = Field(
+    adversaries: list[ActorClass] = Field(
         default_factory=list, description="adversary classes it suits (empty: any)"
     )
     map_features: list[str] = Field(
@@ -94,8 +100,8 @@ class Entry(BaseModel):
         description="set on a copy made by `arise.kb.actors.for_actor`: the other actor "
         "('actor2') it places or moves instead of the adversary; never in the data files",
     )
-    actor_class: str | None = Field(
-        default=None, description="that actor's Scenic class (set with `actor`)"
+    actor_class: ActorClass | None = Field(
+        default=None, description="that actor's Scenic class, a road user's (set with `actor`)"
     )
 
     @field_validator("id")
@@ -138,15 +144,25 @@ class Entry(BaseModel):
             raise ValueError(f"placeholders are UPPER_CASE names: {', '.join(bad)}")
         return value
 
-    @field_validator("adversaries")
+    @field_validator("adversaries", mode="before")
     @classmethod
-    def _adversaries(cls, value: list[str]) -> list[str]:
-        bad = [name for name in value if name not in ADVERSARY_CLASSES]
-        if bad:
-            raise ValueError(
-                f"unknown adversary class {', '.join(bad)}; choose from "
-                f"{', '.join(ADVERSARY_CLASSES)}"
-            )
+    def _adversaries(cls, value: object) -> object:
+        """Checked before the enum's own check, so the error lists the five adversary
+        classes rather than every class of the model."""
+        if isinstance(value, list):
+            bad = [str(name) for name in value if name not in ADVERSARY_CLASSES]
+            if bad:
+                raise ValueError(
+                    f"unknown adversary class {', '.join(bad)}; choose from "
+                    f"{', '.join(ADVERSARY_CLASSES)}"
+                )
+        return value
+
+    @field_validator("actor_class")
+    @classmethod
+    def _road_user(cls, value: ActorClass | None) -> ActorClass | None:
+        if value is not None and not value.is_road_user:
+            raise ValueError(f"{value} is a prop, not a road user's class")
         return value
 
     @field_validator("map_features")
@@ -186,7 +202,7 @@ class Entry(BaseModel):
         """How the script's `# kb:` mark names it: the id, and the actor a copy places."""
         return f"{self.id} as {self.actor}" if self.actor else self.id
 
-    def suits(self, adversary_class: str) -> bool:
+    def suits(self, adversary_class: ActorClass) -> bool:
         """True when this entry works with that adversary class."""
         return not self.adversaries or adversary_class in self.adversaries
 

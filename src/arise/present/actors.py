@@ -6,15 +6,21 @@ from __future__ import annotations
 from dataclasses import dataclass
 from enum import StrEnum
 
+from arise.vocabulary import ActorClass
+
 
 class EntityKind(StrEnum):
+    """The three kinds of ScenarioObject OpenSCENARIO has."""
+
     VEHICLE = "vehicle"
     PEDESTRIAN = "pedestrian"
     MISC = "misc"
 
 
 @dataclass(frozen=True)
-class ActorClass:
+class Entity:
+    """What the exporter writes for one class."""
+
     kind: EntityKind
     category: str  # VehicleCategory / PedestrianCategory / MiscObjectCategory value
     height: float  # metres, when the blueprint table does not know
@@ -23,36 +29,42 @@ class ActorClass:
     max_speed: float = 70.0  # m/s, the vehicle performance limits a player may enforce
 
 
-_VEHICLES = {
-    "Car": ActorClass(EntityKind.VEHICLE, "car", 1.5, 1500, "vehicle.lincoln.mkz_2017"),
-    "NPCCar": ActorClass(EntityKind.VEHICLE, "car", 1.5, 1500, "vehicle.lincoln.mkz_2017"),
-    "Truck": ActorClass(EntityKind.VEHICLE, "truck", 3.0, 12000, "vehicle.carlamotors.carlacola"),
-    "Van": ActorClass(EntityKind.VEHICLE, "van", 2.0, 2500, "vehicle.mercedes.sprinter"),
-    "Bus": ActorClass(EntityKind.VEHICLE, "bus", 4.0, 12000, "vehicle.mitsubishi.fusorosa"),
-    "Motorcycle": ActorClass(
+_CAR = Entity(EntityKind.VEHICLE, "car", 1.5, 1500, "vehicle.lincoln.mkz_2017")
+#: Every wheeled class (ActorClass.is_vehicle): four-wheeled and two-wheeled.
+VEHICLES: dict[ActorClass, Entity] = {
+    ActorClass.CAR: _CAR,
+    ActorClass.NPC_CAR: _CAR,
+    ActorClass.TRUCK: Entity(
+        EntityKind.VEHICLE, "truck", 3.0, 12000, "vehicle.carlamotors.carlacola"
+    ),
+    ActorClass.VAN: Entity(EntityKind.VEHICLE, "van", 2.0, 2500, "vehicle.mercedes.sprinter"),
+    ActorClass.BUS: Entity(EntityKind.VEHICLE, "bus", 4.0, 12000, "vehicle.mitsubishi.fusorosa"),
+    ActorClass.MOTORCYCLE: Entity(
         EntityKind.VEHICLE, "motorbike", 1.5, 250, "vehicle.yamaha.yzf", max_speed=50.0
     ),
-    "Bicycle": ActorClass(
+    ActorClass.BICYCLE: Entity(
         EntityKind.VEHICLE, "bicycle", 1.5, 90, "vehicle.bh.crossbike", max_speed=12.0
     ),
 }
-_PEDESTRIAN = ActorClass(EntityKind.PEDESTRIAN, "pedestrian", 1.8, 80, "walker.pedestrian.0001")
-_PROP = ActorClass(EntityKind.MISC, "obstacle", 0.5, 50, "static.prop.streetbarrier")
+PEDESTRIAN = Entity(EntityKind.PEDESTRIAN, "pedestrian", 1.8, 80, "walker.pedestrian.0001")
+PROP = Entity(EntityKind.MISC, "obstacle", 0.5, 50, "static.prop.streetbarrier")
 
 
-def actor_class(kind: str) -> ActorClass:
-    """The entity of a Scenic class; anything that is no vehicle or walker is a prop."""
-    if kind in _VEHICLES:
-        return _VEHICLES[kind]
-    if kind == "Pedestrian":
-        return _PEDESTRIAN
-    return _PROP
+def entity_of(kind: str) -> Entity:
+    """The entity of a Scenic class named in a trace (untrusted text): a vehicle's or a
+    walker's; anything else, a prop or a class the vocabulary does not know, is a prop."""
+    cls = ActorClass.of(kind)
+    if cls is None or cls.is_prop:
+        return PROP
+    if cls.is_walker:
+        return PEDESTRIAN
+    return VEHICLES[cls]
 
 
 def height_of(kind: str, blueprint: str | None) -> float:
     """The blueprint's height from CARLA's table (as the world model sizes agents), else
     the class's usual height."""
-    default = actor_class(kind).height
+    default = entity_of(kind).height
     if not blueprint:
         return default
     try:

@@ -17,7 +17,7 @@ from enum import StrEnum
 from pathlib import Path
 from typing import Any
 
-from arise.present.actors import EntityKind, actor_class, height_of
+from arise.present.actors import EntityKind, entity_of, height_of
 from arise.present.errors import ExportError
 from arise.present.files import copy_file_atomic, write_bytes_atomic
 from arise.present.source import TraceSource, map_file
@@ -59,7 +59,7 @@ def _bounding_box(xosc: Any, agent: AgentTrace) -> Any:
 
 
 def _entity(xosc: Any, agent: AgentTrace, ego_free: bool) -> Any:
-    spec = actor_class(agent.kind)
+    spec = entity_of(agent.kind)
     blueprint = agent.blueprint or spec.blueprint
     box = _bounding_box(xosc, agent)
     if spec.kind is EntityKind.VEHICLE:
@@ -80,10 +80,16 @@ def _entity(xosc: Any, agent: AgentTrace, ego_free: bool) -> Any:
         )
     elif spec.kind is EntityKind.PEDESTRIAN:
         entity = xosc.Pedestrian(
-            blueprint, spec.mass, xosc.PedestrianCategory.pedestrian, box, model=blueprint
+            blueprint,
+            spec.mass,
+            getattr(xosc.PedestrianCategory, spec.category),
+            box,
+            model=blueprint,
         )
     else:
-        entity = xosc.MiscObject(blueprint, spec.mass, xosc.MiscObjectCategory.obstacle, box)
+        entity = xosc.MiscObject(
+            blueprint, spec.mass, getattr(xosc.MiscObjectCategory, spec.category), box
+        )
     if spec.kind is not EntityKind.MISC:
         # ScenarioRunner's convention: the ego is "ego_vehicle", everyone else "simulation".
         entity.add_property("type", "ego_vehicle" if agent.is_ego else "simulation")
@@ -177,7 +183,7 @@ def build_scenario(
     counts: dict[str, int] = {}
     ego_free = ego is EgoMode.FREE
     for agent in agents:
-        spec = actor_class(agent.kind)
+        spec = entity_of(agent.kind)
         entities.add_scenario_object(agent.name, _entity(xosc, agent, ego_free))
         first = agent.trajectory[0]
         init.add_init_action(

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from arise.render.model import LineKind, RegionKind, Role, Track
+from arise.vocabulary import ActorClass, ActorGroup
 
 BACKGROUND = "#eef1ea"  # off-road ground
 REGION_COLORS: dict[RegionKind, str] = {
@@ -24,24 +25,25 @@ ROLE_COLORS: dict[Role, str] = {
 CONTACT_COLOR = "#111111"
 PATH_COLOR = "#d62728"  # the ego's whole path, drawn faint
 
-_CYCLES = ("Bicycle", "Motorcycle")
-_WALKERS = ("Pedestrian",)
-_VEHICLES = ("Car", "Truck", "Van", "Bus", "NPCCar", "Vehicle")
+#: How an agent that is neither the ego nor the adversary is drawn, by its class's group:
+#: a motorcycle or a bicycle is slimmer and slower than a car and easy to miss among them.
+GROUP_ROLES: dict[ActorGroup, Role] = {
+    ActorGroup.VEHICLE: Role.VEHICLE,
+    ActorGroup.TWO_WHEELER: Role.CYCLIST,
+    ActorGroup.WALKER: Role.WALKER,
+    ActorGroup.PROP: Role.PROP,
+}
 
 
 def role_of(kind: str, is_ego: bool, behavior: str | None) -> Role:
-    """The role an agent plays, from what the trace says about it."""
+    """The role an agent plays, from what the trace says about it (`kind` is untrusted:
+    a class the vocabulary does not know is drawn as a prop)."""
     if is_ego:
         return Role.EGO
     if behavior == "AdversaryBehavior":
         return Role.ADVERSARY
-    if kind in _WALKERS:
-        return Role.WALKER
-    if kind in _CYCLES:
-        return Role.CYCLIST
-    if kind in _VEHICLES:
-        return Role.VEHICLE
-    return Role.PROP
+    cls = ActorClass.of(kind)
+    return GROUP_ROLES[cls.group] if cls is not None else Role.PROP
 
 
 def label(track: Track) -> str:

@@ -7,9 +7,17 @@ from functools import cache
 from typing import Any
 
 from arise.errors import AriseError
+from arise.vocabulary import ActorClass, ActorGroup
 
-# Which blueprint prefixes each kind of actor may use.
-_PREFIX_FOR_CLASS = {"Pedestrian": ("walker.",), "Vehicle": ("vehicle.",), "Prop": ("static.",)}
+# Which blueprint prefixes each group of classes may use.
+_PREFIX_FOR_GROUP: dict[ActorGroup, tuple[str, ...]] = {
+    ActorGroup.VEHICLE: ("vehicle.",),
+    ActorGroup.TWO_WHEELER: ("vehicle.",),
+    ActorGroup.WALKER: ("walker.",),
+    ActorGroup.PROP: ("static.",),
+}
+# The model's base classes, which a script may also create with a blueprint of its own.
+_BASE_GROUPS: dict[str, ActorGroup] = {"Vehicle": ActorGroup.VEHICLE, "Prop": ActorGroup.PROP}
 
 
 class UnknownBlueprintError(AriseError):
@@ -33,11 +41,23 @@ def known_blueprints() -> frozenset[str]:
     return frozenset(names)
 
 
-def _required_prefixes(obj: Any) -> tuple[str, ...] | None:
+def _group(obj: Any) -> ActorGroup | None:
+    """The group of the nearest class of our world model the object is an instance of (a
+    script's own subclass of Car is a vehicle)."""
     for klass in type(obj).__mro__:
-        if klass.__name__ in _PREFIX_FOR_CLASS and klass.__module__.startswith("arise"):
-            return _PREFIX_FOR_CLASS[klass.__name__]
+        if not klass.__module__.startswith("arise"):
+            continue
+        cls = ActorClass.of(klass.__name__)
+        if cls is not None:
+            return cls.group
+        if klass.__name__ in _BASE_GROUPS:
+            return _BASE_GROUPS[klass.__name__]
     return None
+
+
+def _required_prefixes(obj: Any) -> tuple[str, ...] | None:
+    group = _group(obj)
+    return _PREFIX_FOR_GROUP[group] if group is not None else None
 
 
 def check_blueprint(obj: Any) -> None:
