@@ -24,6 +24,7 @@ from typer.core import TyperGroup
 
 from arise import __version__, terminal
 from arise.doctor import DOCTOR_HELP, doctor_command
+from arise.drive.cli import DRIVE_HELP, drive_command
 from arise.errors import AriseError, Interrupted
 from arise.evaluate.cli import BENCH_HELP, REPORT_HELP, bench_command, report_command
 from arise.evaluate.judge_cli import JUDGE_HELP, judge_command
@@ -114,6 +115,7 @@ app.command("bench", help=BENCH_HELP)(bench_command)
 app.command("report", help=REPORT_HELP)(report_command)
 app.command("judge", help=JUDGE_HELP)(judge_command)
 app.command("search", help=SEARCH_HELP)(search_command)
+app.command("drive", help=DRIVE_HELP)(drive_command)
 app.command("replay", help=REPLAY_HELP)(replay_command)
 app.command("export", help=EXPORT_HELP)(export_command)
 app.command("serve", help=SERVE_HELP)(serve_command)
