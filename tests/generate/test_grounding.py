@@ -9,7 +9,7 @@ import pytest
 
 from arise.generate.facts import FactSource
 from arise.generate.grounding import ground
-from arise.generate.mentions import read_cast
+from arise.language.cast import read_cast
 from arise.generate.quotes import find_quote, quote_in
 from arise.generate.readers import read_description
 from arise.generate.spec import ExtractionAnswer

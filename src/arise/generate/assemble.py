@@ -20,6 +20,7 @@ from arise.kb.schema import Entry
 from arise.llm.base import BaseProvider
 from arise.llm.types import Message
 from arise.prompts import load
+from arise.vocabulary import ActorClass
 
 # The value ends at its line's last non-space (possessive spaces, no lazy value before
 # `\s*$`, which backtracked quadratically on a long run of spaces in a KB snippet).
@@ -36,7 +37,7 @@ class Draft:
     script: str
     entries: list[Entry]
     map_name: str
-    adversary_class: str | None  # None: the scene has no adversary
+    adversary_class: ActorClass | None  # None: the scene has no adversary
     params: dict[str, str] = field(default_factory=dict)  # tuned values actually used
     notes: list[str] = field(default_factory=list)
 
@@ -142,7 +143,7 @@ def parameter_listing(entries: list[Entry], declared: dict[str, tuple[str, str]]
 
 def assemble(
     retrieval: Retrieval,
-    adversary_class: str | None,
+    adversary_class: ActorClass | None,
     description: str,
     params: Mapping[str, str] | None = None,
 ) -> Draft:

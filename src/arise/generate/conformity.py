@@ -17,8 +17,8 @@ import re
 from dataclasses import dataclass, field
 from typing import Any
 
-from arise.generate.mentions import read_cast
 from arise.generate.spec import Actor, ScenarioSpec
+from arise.language.cast import read_cast
 from arise.validate.types import (
     AgentTrace,
     CheckResult,
@@ -27,7 +27,7 @@ from arise.validate.types import (
     Stage,
     TracePoint,
 )
-from arise.vocabulary import ActorRole, EgoManeuver, RelativePosition, RoadType
+from arise.vocabulary import ActorClass, ActorRole, EgoManeuver, RelativePosition, RoadType
 
 LANE_HALF = 1.8  # |lateral offset| below this is "in the ego's lane"
 NEXT_LANE = 5.6  # up to this is the adjacent lane
@@ -458,14 +458,14 @@ def _allowed(most: int | None) -> str:
     return "no other object" if most == 0 else f"at most {most} other object(s)"
 
 
-def _named_classes(spec: ScenarioSpec) -> set[str]:
+def _named_classes(spec: ScenarioSpec) -> set[ActorClass]:
     """The classes of what the text names besides the adversary (its other copies too)."""
     named = {mention.cls for words in spec.participants for mention in read_cast(words).others}
     named |= {actor.scenic_class for actor in spec.actors}
     return named
 
 
-def _same_class(kind: str, named: str) -> bool:
+def _same_class(kind: str, named: ActorClass) -> bool:
     """A trace agent of class `kind` is the thing named `named` (an NPCCar is a Car)."""
     return kind == named or (kind == "NPCCar" and named == "Car")
 

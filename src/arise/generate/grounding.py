@@ -32,6 +32,7 @@ from arise.generate.readers import (
 from arise.generate.spec import ExtractionAnswer, Requirement, RequirementKind, ScenarioSpec
 from arise.generate.weather_words import first_match
 from arise.vocabulary import (
+    ActorClass,
     AdversaryManeuver,
     AdversaryType,
     EgoManeuver,
@@ -208,7 +209,7 @@ def ground(description: str, answer: ExtractionAnswer) -> Grounded:
         )
     reading = read_description(description, adversary_quote)
     facts = dict(reading.facts)
-    adversary_class: str | None = None
+    adversary_class: ActorClass | None = None
     if reading.adversary is not None and (kind := adversary_type_of(reading.adversary.cls)):
         adversary_class = reading.adversary.cls
         facts["adversary_type"] = _fact(

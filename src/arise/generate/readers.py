@@ -11,16 +11,16 @@ import re
 from dataclasses import dataclass, field
 
 from arise.generate.facts import FactSource, GroundedFact
-from arise.generate.mentions import (
+from arise.generate.quotes import find_quote
+from arise.generate.weather_words import read_weather
+from arise.language.cast import (
     VEHICLE_CLASSES,
     Cast,
     Mention,
     phrase_start,
-    read_cast,
     sentence_end,
 )
-from arise.generate.quotes import find_quote
-from arise.generate.weather_words import read_weather
+from arise.language.reading import parse
 from arise.vocabulary import (
     AdversaryManeuver,
     AdversaryType,
@@ -361,8 +361,11 @@ def read_compass(cast: Cast, mention: Mention) -> GroundedFact | None:
 
 
 def _subject(cast: Cast, position: int) -> Mention | str | None:
-    """Who a verb at `position` is about: the actor named last before it in its sentence,
-    or, for a leading participle ("Turning left at ..., the ego ..."), the one after it."""
+    """Who a verb at `position` is about: the subject of its clause (`language.clauses`);
+    without clauses, the actor named last before it in its sentence, or, for a leading
+    participle ("Turning left at ..., the ego ..."), the one after it."""
+    if cast.clauses:
+        return cast.subject_at(position)
     head = cast.text[:position]
     sentence_start = max(head.rfind(c) for c in ".;!?") + 1
     if not head[sentence_start:].strip() or re.fullmatch(
@@ -664,6 +667,8 @@ _EGO_PLANS: tuple[tuple[EgoPlan, re.Pattern[str]], ...] = (
 def _verb_subject(cast: Cast, position: int) -> Mention | str | None:
     """Like `_subject`, but a verb joined by "and (then)" ("changes lanes to pass a bus and
     then returns") belongs to the sentence's first actor, not the one named just before."""
+    if cast.clauses:
+        return cast.subject_at(position)
     head = cast.text[:position]
     if re.search(r"\b(?:and|then)\s+(?:then\s+)?$", head, re.I):
         sentence_start = max(head.rfind(c) for c in ".;!?") + 1
@@ -759,7 +764,7 @@ def is_vehicle(cls: str) -> bool:
 def read_description(description: str, adversary_quote: str | None = None) -> Reading:
     """Everything the fixed rules read: the cast, the adversary, its side and turn, the
     ego's maneuver and the weather, each with its words."""
-    cast = read_cast(description)
+    cast = parse(description)
     reading = Reading(cast=cast)
     reading.adversary = choose_adversary(cast, adversary_quote)
     reading.facts["weather"] = read_weather(description)

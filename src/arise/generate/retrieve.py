@@ -18,15 +18,14 @@ from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from enum import IntEnum
 
-from arise.generate.mentions import read_cast
 from arise.generate.spec import Actor, ScenarioSpec
 from arise.kb.actors import for_actor, spawn_span
 from arise.kb.loader import KnowledgeBase
 from arise.kb.retrieval.base import Retriever
 from arise.kb.schema import CONFLICT_ROUTE, Component, Entry
+from arise.language.cast import read_cast
 from arise.vocabulary import (
     POINT_CLASSES,
-    REFINED_CLASSES,
     ActorRole,
     AdversaryManeuver,
     Approach,
@@ -694,7 +693,7 @@ def _actor_spawns(
     start = _actor_start(actor)
     if start is None:
         return []
-    cls = REFINED_CLASSES.get(actor.scenic_class, actor.scenic_class)
+    cls = actor.scenic_class.as_adversary
     defined = set(geometry.defines)
     return [
         e
@@ -825,7 +824,7 @@ def _actor_entries(
     fits_a_map: Callable[[list[Entry]], bool],
 ) -> tuple[Entry, Entry] | None:
     """The best spawn and behavior (as written, not yet copied) for one actor."""
-    cls = REFINED_CLASSES.get(actor.scenic_class, actor.scenic_class)
+    cls = actor.scenic_class.as_adversary
     defined = set(geometry.defines)
 
     def side(spawn: Entry) -> Fit:

@@ -14,9 +14,9 @@ from pydantic import BaseModel, Field, field_validator
 
 from arise.generate.facts import FactSource, GroundedFact
 from arise.vocabulary import (
-    ACTOR_CLASSES,
     DEFAULT_WEATHER,
     WEATHER_PRESETS,
+    ActorClass,
     ActorRole,
     AdversaryManeuver,
     AdversaryType,
@@ -63,7 +63,7 @@ class Actor(BaseModel):
     read by fixed rules from its own words (`quote` is where the text names it)."""
 
     role: ActorRole
-    scenic_class: str = Field(description="the Scenic class (Car, Van, Bus, Cone, ...)")
+    scenic_class: ActorClass = Field(description="the Scenic class (Car, Van, Bus, Cone, ...)")
     count: int = Field(default=1, ge=1, description="how many the text names")
     start: RelativePosition | None = Field(
         default=None, description="where it starts, seen from the ego; None: not stated"
@@ -83,7 +83,7 @@ class Actor(BaseModel):
     @property
     def road_user(self) -> bool:
         """A vehicle or a pedestrian (which gets its own spawn), not a prop."""
-        return self.scenic_class in ACTOR_CLASSES
+        return self.scenic_class.is_road_user
 
 
 #: Road types that only the description's words set (see ExtractionAnswer.model_json_schema).
@@ -171,7 +171,7 @@ class ScenarioSpec(BaseModel):
     )
     weather: str = Field(default=DEFAULT_WEATHER, description="a CARLA weather preset")
     requirements: list[Requirement] = Field(default_factory=list)
-    adversary_class: str | None = Field(
+    adversary_class: ActorClass | None = Field(
         default=None, description="the Scenic class the text names (Van, Bus, ...), if any"
     )
     grounding: list[GroundedFact] = Field(default_factory=list)
@@ -186,7 +186,7 @@ class ScenarioSpec(BaseModel):
         return bool(sources & {FactSource.TEXT, FactSource.MODEL})
 
     @property
-    def scenic_class(self) -> str:
+    def scenic_class(self) -> ActorClass:
         """The adversary's Scenic class: the one named (a van is a Van), else its type's."""
         return self.adversary_class or self.adversary_type.scenic_class
 

@@ -1,0 +1,8 @@
+"""The language layer: a description is read once, here, into typed values.
+
+`read_cast` finds who and what the text names (the ego under its many names, each other
+road user or object, pronouns and "the other car" folded into the actor they mean);
+`clauses` says whose each verb is; `rules` holds every reading rule as data, each with
+example sentences and the facts they must give. Stages after extraction consume the typed
+result and never read the description again.
+"""

@@ -1,0 +1,397 @@
+"""Who and what a description names: the ego, and each road user or object with its words.
+
+Read once, without a model. The cast finds:
+
+- the ego under its names: "the ego", "the AV", "the test vehicle", "the subject vehicle",
+  "I"/"my car" in a claim, NHTSA's leading "Vehicle ..." (its typology names the ego so),
+  and the numbered vehicle of a report that is the autonomous one ("V1", "Vehicle 2");
+- each other road user or prop by its noun (data/lexicon.yaml), or by a make, model and
+  year ("a 2017 Hollis Tern") when no noun names it; numbered parties ("V2", "P1");
+- references back to one of them: "the van", "the other car", "the other driver", "the
+  pickup" after "a 2017 ... pickup" (pronouns are resolved with the clauses, `reading`).
+
+Each mention keeps its spans, so every later fact (a side, a turn) is tied to the words it
+rests on and to the actor those words are about.
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass, field
+
+from arise.language.lexicon import class_pattern, lexicon, noun_class
+from arise.vocabulary import ActorClass
+
+PROP_NOUN_CLASSES = frozenset(cls for cls in ActorClass if cls.is_prop)
+VEHICLE_CLASSES = frozenset(cls for cls in ActorClass if cls.is_vehicle)
+
+_COUNT_WORDS = {
+    "two": 2,
+    "three": 3,
+    "four": 4,
+    "five": 5,
+    "six": 6,
+    "pair of": 2,
+    "couple of": 2,
+}
+_COUNT = re.compile(r"\b(two|three|four|five|six|\d|pair of|couple of)\s+(?:\w+[- ]){0,2}$", re.I)
+_NEW = re.compile(r"\b(?:a|an|another|second|third|one|some|other)\s+(?:[\w'-]+[- ]){0,3}$", re.I)
+_DEFINITE = re.compile(r"\b(?:the|that|this|its|their|his|her)\s+(?:[\w'-]+[- ]){0,3}$", re.I)
+# "both vehicles", "no other vehicle": a summary or a negation, not one more thing.
+_NOT_NEW_THING = re.compile(
+    r"\b(?:both|all|neither|either|no|any|none of the|no one|nobody|each|other)\s+"
+    r"(?:other\s+)?(?:\w+\s+)?$",
+    re.I,
+)
+_PLURAL = re.compile(r"(?:s|ren|men|ple|ies)$", re.I)
+# "the other car", "the other driver": the road user named before that is not the ego.
+_THE_OTHER = re.compile(r"\bthe other\s+$", re.I)
+# A driver, rider or operator of something already named is that thing.
+_DRIVER = re.compile(r"^(?:driver|drivers|motorist|motorists)$", re.I)
+_DRIVER_OF = re.compile(r"^\s+(?:of|in|driving)\s+(?:a|an|the)\b", re.I)
+# The ego's own driver ("the AV's safety driver", "its driver", "my driver") is no road user.
+_EGO_DRIVER = re.compile(
+    r"\b(?:safety|test|backup|vehicle|av's|ego's|its|my|our)\s+(?:\w+\s+)?$", re.I
+)
+# Numbered parties of a report: "V1", "Vehicle 2", "Veh. 1", "Unit 1"; pedestrians "P1".
+_NUMBERED = re.compile(r"\b(?:V|Veh\.?\s?|Vehicle\s|Unit\s)([1-9])\b(?:'s)?")
+_NUMBERED_WALKER = re.compile(r"\bP([1-9])\b(?:'s)?")
+# What says a numbered vehicle is the one under test.
+_AUTONOMOUS = re.compile(
+    r"\b(?:autonomous|driverless|self-driving|automated|av|ads|robotaxi|test vehicle)\b", re.I
+)
+# NHTSA's typology names the ego "Vehicle" with no article, at a sentence's start.
+_NHTSA_EGO = re.compile(r"(?:^|(?<=[.;:]\s))Vehicle(?:'s)?\b")
+_NHTSA_EGO_ANYWHERE = re.compile(r"(?<![\w'])(?<!\bthe )(?<!\ba )(?<!\ban )Vehicle(?:'s)?\b")
+# A year and a capitalised name ("a 2017 Hollis Tern"), or a known make ("a white Subaru").
+_YEAR_NAME = re.compile(
+    r"\b(?:19[5-9]\d|20[0-4]\d)\s+(?:[A-Z][\w-]*)(?:\s+(?:[A-Z0-9][\w-]*))?(?:\s+(?:[A-Z0-9][\w-]*))?"
+)
+_SENTENCE = re.compile(r"[.;!?](?:\s|$)")
+
+
+@dataclass(frozen=True)
+class Span:
+    start: int
+    end: int
+
+
+@dataclass(frozen=True)
+class Mention:
+    """One thing the text names: its class, how many, and its first words in the text."""
+
+    cls: ActorClass
+    count: int
+    start: int
+    end: int
+    quote: str
+    spans: tuple[Span, ...]
+
+    @property
+    def is_prop(self) -> bool:
+        return self.cls in PROP_NOUN_CLASSES
+
+    def with_span(self, span: Span) -> Mention:
+        spans = tuple(sorted({*self.spans, span}, key=lambda s: s.start))
+        return Mention(self.cls, self.count, self.start, self.end, self.quote, spans)
+
+
+@dataclass(frozen=True)
+class Clause:
+    """A stretch of a sentence with one verb's worth of words, and whose they are."""
+
+    start: int
+    end: int
+    opener: str  # the word or mark before it ("" at the start of the text)
+    subject: Mention | str | None  # a Mention, "ego", or nobody named
+    explicit: bool  # the subject is named in the clause (not carried over)
+
+
+@dataclass(frozen=True)
+class Cast:
+    """The ego's spans and the other things a description names, in order of first mention."""
+
+    text: str
+    ego: tuple[Span, ...]
+    others: tuple[Mention, ...]
+    #: Words read as naming someone that are not a road user of the scene (kept for reports).
+    skipped: tuple[str, ...] = field(default=())
+    #: The clauses and their subjects (`arise.language.reading.parse` fills them in).
+    clauses: tuple[Clause, ...] = field(default=())
+
+    def subject_at(self, position: int) -> Mention | str | None:
+        """Whose is the verb at `position`: the subject of the clause holding it."""
+        for clause in self.clauses:
+            if clause.start <= position < clause.end:
+                return clause.subject
+        return None
+
+    def subject_before(self, position: int) -> Mention | str | None:
+        """The actor ("ego" or a Mention) named last before `position` in its sentence."""
+        sentence_start = _sentence_start(self.text, position)
+        best: tuple[int, Mention | str] | None = None
+        for span in self.ego:
+            possessive = self.text[span.start : span.end].lower().endswith("'s")
+            if (
+                sentence_start <= span.start < position
+                and not possessive
+                and (best is None or span.start > best[0])
+            ):
+                best = (span.start, "ego")
+        for mention in self.others:
+            for span in mention.spans:
+                if sentence_start <= span.start < position and (
+                    best is None or span.start > best[0]
+                ):
+                    best = (span.start, mention)
+        return best[1] if best else None
+
+    def subject_after(self, position: int) -> Mention | str | None:
+        """The actor named first after `position` in its sentence (for a leading participle:
+        "Turning left, the ego ...")."""
+        end = sentence_end(self.text, position)
+        best: tuple[int, Mention | str] | None = None
+        for span in self.ego:
+            if position <= span.start < end and (best is None or span.start < best[0]):
+                best = (span.start, "ego")
+        for mention in self.others:
+            for span in mention.spans:
+                if position <= span.start < end and (best is None or span.start < best[0]):
+                    best = (span.start, mention)
+        return best[1] if best else None
+
+    def mention_at(self, start: int, end: int) -> Mention | None:
+        """The mention one of whose spans overlaps [start, end)."""
+        for mention in self.others:
+            if any(span.start < end and start < span.end for span in mention.spans):
+                return mention
+        return None
+
+    def actor_at(self, position: int) -> Mention | str | None:
+        """The actor whose span holds `position`."""
+        if any(span.start <= position < span.end for span in self.ego):
+            return "ego"
+        return self.mention_at(position, position + 1)
+
+
+def _sentence_start(text: str, position: int) -> int:
+    ends = [m.end() for m in _SENTENCE.finditer(text, 0, position)]
+    return ends[-1] if ends else 0
+
+
+def sentence_end(text: str, position: int) -> int:
+    """Where the sentence holding `position` ends (a stop followed by a space, or the end)."""
+    found = _SENTENCE.search(text, position)
+    return found.start() if found else len(text)
+
+
+def _overlaps(spans: list[tuple[int, int]], start: int, end: int) -> bool:
+    return any(a < end and start < b for a, b in spans)
+
+
+def _numbered_ego(text: str) -> str | None:
+    """Which number the ego has among numbered vehicles ("V1"...), or None if none are.
+
+    The one whose sentence says it is autonomous; else 1, the usual first party."""
+    numbers = {m.group(1) for m in _NUMBERED.finditer(text)}
+    if not numbers:
+        return None
+    for match in _NUMBERED.finditer(text):
+        end = sentence_end(text, match.end())
+        window = text[match.end() : min(end, match.end() + 80)]
+        if _AUTONOMOUS.search(window) and not _NUMBERED.search(window):
+            return match.group(1)
+    return "1" if "1" in numbers else min(numbers)
+
+
+def _ego_spans(text: str) -> list[Span]:
+    spans = [Span(*m.span()) for m in class_pattern("ego").finditer(text)]
+    # "I" only as a capital letter; "we"/"i" in lower case mid-word cannot occur (whole words)
+    spans = [s for s in spans if text[s.start : s.end] != "i"]
+    nhtsa = list(_NHTSA_EGO.finditer(text))
+    if nhtsa:  # the typology's style: every bare "Vehicle" is the ego
+        spans += [Span(*m.span()) for m in _NHTSA_EGO_ANYWHERE.finditer(text)]
+    ego_number = _numbered_ego(text)
+    if ego_number is not None:
+        spans += [Span(*m.span()) for m in _NUMBERED.finditer(text) if m.group(1) == ego_number]
+    return sorted(set(spans), key=lambda s: s.start)
+
+
+def read_cast(text: str) -> Cast:
+    """The ego and the things `text` names (each thing once, with a count)."""
+    lex = lexicon()
+    ego = _ego_spans(text)
+    taken = [(s.start, s.end) for s in ego]
+    found: list[Mention] = []
+    skipped: list[str] = []
+    ego_number = _numbered_ego(text)
+    numbered: dict[str, int] = {}  # "V2" -> index in found
+    candidates: list[tuple[int, int, ActorClass, str]] = []  # start, end, class, kind
+    for match in _NUMBERED.finditer(text):
+        if match.group(1) != ego_number:
+            candidates.append((match.start(), match.end(), ActorClass.CAR, f"V{match.group(1)}"))
+    for match in _NUMBERED_WALKER.finditer(text):
+        candidates.append((match.start(), match.end(), ActorClass.PEDESTRIAN, f"P{match.group(1)}"))
+    for match in lex.noun_pattern.finditer(text):
+        candidates.append((match.start(), match.end(), ActorClass(noun_class(match)), "noun"))
+    for match in _YEAR_NAME.finditer(text):
+        candidates.append((match.start(), match.end(), ActorClass.CAR, "make"))
+    candidates += _named_makes(text)
+    candidates.sort(key=lambda c: (c[0], -c[1]))
+    for start, end, cls, kind in candidates:
+        if _overlaps(taken, start, end):
+            continue
+        after = text[end:]
+        if kind in ("noun", "make") and _not_an_actor(after, lex.not_an_actor_before):
+            continue
+        word = text[start:end]
+        before = text[max(0, start - 40) : start]
+        if kind.startswith(("V", "P")) and kind != "noun" and kind in numbered:
+            index = numbered[kind]
+            found[index] = found[index].with_span(Span(start, end))
+            taken.append((start, end))
+            continue
+        if kind == "make" and _noun_follows(text, end):
+            continue  # "a 2017 Hollis Tern pickup": the noun names it, with these words
+        if _DRIVER.match(word) and (_EGO_DRIVER.search(before) or _DRIVER_OF.match(after)):
+            skipped.append(word)
+            taken.append((start, end))
+            continue
+        if kind == "noun" and _NOT_NEW_THING.search(before) and not _THE_OTHER.search(before):
+            continue
+        count_match = _COUNT.search(before)
+        count = 1
+        if count_match:
+            token = count_match.group(1).lower()
+            count = int(token) if token.isdigit() else _COUNT_WORDS.get(token, 1)
+        span = Span(start, end)
+        earlier = _same_thing(found, cls, before, word, ego_number)
+        taken.append((start, end))
+        if earlier is not None:
+            index = found.index(earlier)
+            found[index] = earlier.with_span(span)
+            continue
+        if count == 1 and _PLURAL.search(word) and cls not in ("Bus", "Debris", "Pedestrian"):
+            count = 2 if not count_match else count
+        quote_start = phrase_start(text, start)
+        found.append(Mention(cls, count, start, end, text[quote_start:end], (span,)))
+        if kind.startswith(("V", "P")) and kind != "noun":
+            numbered[kind] = len(found) - 1
+    found = _numbered_descriptions(text, found, numbered)
+    found = _ego_appositions(text, ego, found)
+    return Cast(text, tuple(ego), tuple(found), tuple(skipped))
+
+
+def _not_an_actor(after: str, words: tuple[str, ...]) -> bool:
+    """ "bike lane", "car park", "the driver's door": the noun qualifies another word."""
+    found = re.match(r"^(?:'s)?[\s-]+([\w-]+)", after)
+    return bool(found and found.group(1).lower() in words)
+
+
+def _named_makes(text: str) -> list[tuple[int, int, ActorClass, str]]:
+    """A known make after an article, a colour or a year ("a white Subaru Outback")."""
+    lex = lexicon()
+    found = []
+    for match in re.finditer(r"\b[A-Z][\w-]+", text):
+        if match.group(0).lower() not in lex.makes:
+            continue
+        before = text[max(0, match.start() - 30) : match.start()].lower().split()
+        if before and (before[-1] in ("a", "an", "the", "another") or before[-1] in lex.colours):
+            end = match.end()
+            model = re.match(r"\s+([A-Z0-9][\w-]*)", text[end:])
+            if model and model.group(1).lower() not in ("and", "on", "at", "in"):
+                end += model.end()
+            found.append((match.start(), end, ActorClass.CAR, "make"))
+    return found
+
+
+def _noun_follows(text: str, end: int) -> bool:
+    """A class noun within two words after `end`."""
+    rest = text[end : end + 30]
+    head = re.match(r"^(?:\s+[\w-]+){0,2}", rest)
+    window = rest[: head.end()] if head else ""
+    return bool(lexicon().noun_pattern.search(window))
+
+
+def _numbered_descriptions(
+    text: str, found: list[Mention], numbered: dict[str, int]
+) -> list[Mention]:
+    """ "V2, a pickup, ..." or "V2 (a Toyota pickup)": the class the apposition names, and
+    the apposition folded into V2 instead of standing as one more actor."""
+    for _kind, index in numbered.items():
+        mention = found[index]
+        first = mention.spans[0]
+        after = re.match(r"^,?\s*\(?\s*(?:a|an|the)\s+([^,;.()]{1,60})", text[first.end :])
+        if not after:
+            continue
+        start = first.end + after.start(1)
+        end = first.end + after.end(1)
+        inner = [m for m in found if m is not mention and m.start >= start and m.start < end]
+        if not inner:
+            continue
+        named = inner[0]
+        merged = Mention(
+            named.cls,
+            mention.count,
+            mention.start,
+            mention.end,
+            mention.quote,
+            tuple(sorted({*mention.spans, *named.spans}, key=lambda s: s.start)),
+        )
+        found = [merged if m is mention else m for m in found if m is not named]
+        numbered = {k: found.index(merged) if v == index else v for k, v in numbered.items()}
+    return found
+
+
+def _ego_appositions(text: str, ego: list[Span], found: list[Mention]) -> list[Mention]:
+    """ "V1, a 2019 ... in driverless mode, ...", "the AV (a white SUV)": the ego described,
+    not one more actor."""
+    for span in ego:
+        after = re.match(r",?\s*\(?\s*(?:a|an)\s+[^,;.()]{1,60}", text[span.end :])
+        if not after:
+            continue
+        start, end = span.end + after.start(), span.end + after.end()
+        found = [m for m in found if not (start <= m.start < end and len(m.spans) == 1)]
+    return found
+
+
+def _same_thing(
+    found: list[Mention], cls: ActorClass, before: str, word: str, ego_number: str | None
+) -> Mention | None:
+    """An earlier mention this one refers back to ("the van", "the other vehicle")."""
+    if _THE_OTHER.search(before):
+        for earlier in reversed(found):
+            if earlier.cls in VEHICLE_CLASSES or cls == earlier.cls:
+                return earlier
+        return None
+    if _NEW.search(before) and not _DEFINITE.search(before[-12:]):
+        return None
+    if not _DEFINITE.search(before):
+        return None
+    generic_vehicle = word.lower() in ("vehicle", "vehicles", "driver", "motorist") or (
+        word.lower().startswith("car")
+    )
+    for earlier in reversed(found):
+        if earlier.cls == cls:
+            return earlier
+        if generic_vehicle and earlier.cls in VEHICLE_CLASSES and cls == "Car":
+            return earlier
+    return None
+
+
+_DETERMINER = re.compile(
+    r"^(?:an?|the|another|two|three|four|five|six|\d|one|some|its|their)$", re.I
+)
+
+
+def phrase_start(text: str, start: int) -> int:
+    """Where the noun phrase of the noun at `start` begins: the nearest article or number
+    at most three words before it ("a parked delivery van"), else the noun itself."""
+    before = text[max(0, start - 40) : start]
+    words = list(re.finditer(r"[\w'-]+", before))[-4:]
+    for word in reversed(words):
+        if re.search(r"[.;,!?]", before[word.end() :]):
+            break  # the phrase does not reach across punctuation
+        if _DETERMINER.match(word.group(0)):
+            return max(0, start - 40) + word.start()
+    return start

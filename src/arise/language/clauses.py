@@ -1,0 +1,173 @@
+"""Whose is each verb: a description's sentences cut into clauses, each with its subject.
+
+A clause ends at a comma, a semicolon or a joining word (and, then, but, while, when, as,
+after, before, until, because, which, that, who). Its subject is:
+
+- the actor named at its start ("a cyclist swerves", "then the ego brakes");
+- for a relative clause ("a car that slows", "a van, which stops"), the actor before it;
+- for a participle right after an actor ("a car turning left", "a truck parked on the
+  right"), that actor;
+- otherwise the subject carries over from the clause before that is not a relative one:
+  in "the ego follows a car that slows, then moves over to the left lane", it is the ego
+  that moves over; a sentence that opens with a participle ("Turning left, the ego ...")
+  takes the subject of the clause after it.
+"""
+
+from __future__ import annotations
+
+import re
+
+from arise.language.cast import Cast, Clause, Mention, Span
+
+Actor = Mention | str  # a Mention, or "ego"
+
+_BOUNDARY = re.compile(
+    r"[,;:()]|\.(?=\s|$)|[!?]"
+    r"|\b(?:and then|and|then|but|while|whilst|when|as|after|before|until|because|so that|"
+    r"which|that|who|whereupon)\b",
+    re.I,
+)
+_RELATIVE = frozenset({"which", "that", "who"})
+_SENTENCE_END = frozenset({".", "!", "?", ";"})
+# Words that may come before a clause's subject ("then suddenly the ego ...").
+_LEAD_WORDS = re.compile(
+    r"(?:\s|then|suddenly|also|later|immediately|finally|meanwhile|now|and|but|"
+    r"at the same time|at that moment|just then|moments later|seconds later)*",
+    re.I,
+)
+_PARTICIPLE = re.compile(r"\s*,?\s*(?:\w+ly\s+)?(\w+(?:ing|ed))\b", re.I)
+_NOT_PARTICIPLE = frozenset({"during", "nothing", "something", "anything", "everything", "bed"})
+
+
+def _spans(cast: Cast) -> list[tuple[Span, Actor]]:
+    found: list[tuple[Span, Actor]] = [(span, "ego") for span in cast.ego]
+    for mention in cast.others:
+        found += [(span, mention) for span in mention.spans]
+    return sorted(found, key=lambda item: item[0].start)
+
+
+def _opening_actor(
+    cast: Cast, spans: list[tuple[Span, Actor]], start: int, end: int
+) -> Actor | None:
+    """The actor named at the start of [start, end), after lead words and an article or
+    a few adjectives ("then a speeding red car")."""
+    head = _LEAD_WORDS.match(cast.text, start)
+    first_word = head.end() if head else start
+    for span, actor in spans:
+        if span.start < first_word or span.start >= end:
+            continue
+        between = cast.text[first_word : span.start]
+        if len(between.split()) > 4 or re.search(
+            r"\b(?:of|in|into|to|from|behind|with|by|for|at|on|toward|towards|past|beside|"
+            r"near|ahead|around)\b",
+            between,
+            re.I,
+        ):
+            return None
+        if cast.text[span.start : span.end].lower().endswith("'s"):
+            return None  # "the ego's lane"
+        if re.match(r"^'s\b", cast.text[span.end : span.end + 2]):
+            return None
+        return actor
+    return None
+
+
+def _actor_ending_at(spans: list[tuple[Span, Actor]], text: str, position: int) -> Actor | None:
+    """The actor whose span ends just before `position` (spaces and a comma aside)."""
+    gap = re.search(r"[\s,]*$", text[:position])
+    edge = gap.start() if gap else position
+    for span, actor in spans:
+        if span.end == edge:
+            return actor
+    return None
+
+
+def read_clauses(cast: Cast) -> list[Clause]:
+    """The clauses of `cast.text`, in order, each with its subject (or None)."""
+    text = cast.text
+    spans = _spans(cast)
+    cuts: list[tuple[int, int, str]] = [(0, 0, "")]
+    for match in _BOUNDARY.finditer(text):
+        cuts.append((match.start(), match.end(), match.group(0).lower()))
+    # A participle right after an actor opens a clause about it ("a car turning left").
+    for span, _actor in spans:
+        found = _PARTICIPLE.match(text, span.end)
+        if found and found.group(1).lower() not in _NOT_PARTICIPLE and "," not in found.group(0):
+            cuts.append((found.start(1), found.start(1), "~participle"))
+    cuts.sort()
+    clauses: list[Clause] = []
+    for index, (_, begin, opener) in enumerate(cuts):
+        end = cuts[index + 1][0] if index + 1 < len(cuts) else len(text)
+        if not text[begin:end].strip():
+            continue
+        subject: Actor | None
+        if opener in _RELATIVE or opener == "~participle":
+            subject = _actor_ending_at(
+                spans, text, cuts[index][0] if opener != "~participle" else begin
+            )
+            if subject is None and opener != "~participle":
+                subject = _opening_actor(cast, spans, begin, end)
+        else:
+            subject = _opening_actor(cast, spans, begin, end)
+        clauses.append(Clause(begin, end, opener, subject, explicit=subject is not None))
+    return _carry_subjects(clauses, text, spans)
+
+
+_PRONOUN = re.compile(r"(?:\s|then|suddenly|also|and)*\b(it|he|she|they)\b", re.I)
+
+
+def _agrees(actor: Actor | None, plural: bool) -> bool:
+    count = 1 if actor is None or isinstance(actor, str) else actor.count
+    return actor is not None and (count > 1) == plural
+
+
+def _pronoun_referent(
+    clause: Clause, carried: Actor | None, text: str, spans: list[tuple[Span, Actor]]
+) -> Actor | None:
+    """Who a pronoun opening `clause` means: the subject carried on when the number
+    agrees ("two pedestrians cross ... while it drives": not the pedestrians), else the
+    nearest actor named before it that agrees."""
+    found = _PRONOUN.match(text, clause.start, clause.end)
+    if found is None:
+        return carried
+    plural = found.group(1).lower() == "they"
+    if _agrees(carried, plural):
+        return carried
+    for span, actor in reversed(spans):
+        if span.end <= clause.start and _agrees(actor, plural):
+            return actor
+    return carried
+
+
+def _carry_subjects(
+    clauses: list[Clause], text: str, spans: list[tuple[Span, Actor]]
+) -> list[Clause]:
+    """Give each subjectless clause the subject it continues (see the module's docstring)."""
+    done: list[Clause] = []
+    main: Actor | None = None  # the subject of the last clause that is not a relative one
+    pending: list[int] = []  # a sentence's opening clauses without a subject yet
+    sentence_open = True
+    for clause in clauses:
+        if clause.opener in _SENTENCE_END or clause.opener == "":
+            sentence_open = True
+        if clause.subject is not None:
+            done.append(clause)
+            if clause.opener not in _RELATIVE and clause.opener != "~participle":
+                main = clause.subject
+                for index in pending:
+                    done[index] = _with(done[index], clause.subject)
+                pending = []
+            sentence_open = False
+            continue
+        if sentence_open:
+            pending.append(len(done))
+            done.append(clause)
+            continue
+        done.append(_with(clause, _pronoun_referent(clause, main, text, spans)))
+    for index in pending:  # no clause after it named anyone
+        done[index] = _with(done[index], main)
+    return done
+
+
+def _with(clause: Clause, subject: Actor | None) -> Clause:
+    return Clause(clause.start, clause.end, clause.opener, subject, explicit=False)

@@ -1,0 +1,74 @@
+"""The lexicon (data/lexicon.yaml) loaded once: word classes, nouns by class, makes."""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass
+from functools import cache
+from importlib import resources
+from typing import Any
+
+import yaml
+
+from arise.language.errors import RuleError
+from arise.language.patterns import compile_pattern
+
+
+@dataclass(frozen=True)
+class Lexicon:
+    classes: dict[str, tuple[str, ...]]
+    #: (Scenic class, phrases), most specific class first.
+    nouns: tuple[tuple[str, tuple[str, ...]], ...]
+    not_an_actor_before: tuple[str, ...]
+    makes: tuple[str, ...]
+    colours: tuple[str, ...]
+    #: Every noun, one named group per class (see `_noun_pattern`).
+    noun_pattern: re.Pattern[str]
+
+
+def _strings(data: Any, where: str) -> tuple[str, ...]:
+    if not isinstance(data, list) or not all(isinstance(item, str) for item in data):
+        raise RuleError(f"lexicon: {where} must be a list of words")
+    return tuple(item.lower() for item in data)
+
+
+@cache
+def lexicon() -> Lexicon:
+    """The shipped lexicon; a malformed file is a RuleError naming the part."""
+    text = resources.files("arise.language").joinpath("data/lexicon.yaml").read_text("utf-8")
+    data = yaml.safe_load(text)
+    if not isinstance(data, dict):
+        raise RuleError("lexicon: not a mapping")
+    classes = {name: _strings(words, f"classes.{name}") for name, words in data["classes"].items()}
+    nouns = tuple((cls, _strings(words, f"nouns.{cls}")) for cls, words in data["nouns"].items())
+    return Lexicon(
+        classes=classes,
+        nouns=nouns,
+        not_an_actor_before=_strings(data["not_an_actor_before"], "not_an_actor_before"),
+        makes=_strings(data["makes"], "makes"),
+        colours=_strings(data["colours"], "colours"),
+        noun_pattern=_noun_pattern(nouns),
+    )
+
+
+def _noun_pattern(nouns: tuple[tuple[str, tuple[str, ...]], ...]) -> re.Pattern[str]:
+    """One regex for every noun, the longest phrase first whatever its class ("box truck"
+    is a Truck, not a Box); each phrase's group is named CLASS_N (see `noun_class`)."""
+    phrases = [(phrase, cls) for cls, words in nouns for phrase in words]
+    phrases.sort(key=lambda item: len(item[0]), reverse=True)
+    groups = []
+    for index, (phrase, cls) in enumerate(phrases):
+        inner = compile_pattern("@x", {"x": (phrase,)}).pattern
+        groups.append(f"(?P<{cls}_{index}>{inner})")
+    return re.compile("|".join(groups), re.I)
+
+
+def noun_class(match: re.Match[str]) -> str:
+    """The Scenic class of a match of `Lexicon.noun_pattern`."""
+    assert match.lastgroup is not None
+    return match.lastgroup.rsplit("_", 1)[0]
+
+
+def class_pattern(name: str) -> re.Pattern[str]:
+    """The phrases of one word class as a regex (`ego`, `side`, ...)."""
+    return compile_pattern(f"@{name}", lexicon().classes)

@@ -1,0 +1,91 @@
+"""The phrase patterns our reading rules are written in, compiled once to regular expressions.
+
+A pattern is words separated by spaces, matched as whole words, case aside:
+
+- ``oncoming``: the word itself; ``left-hand`` also matches "left hand" and "lefthand", and words
+  apart match words joined by a hyphen (``right front`` matches "right-front");
+- ``overtak*``: any word that starts so ("overtakes", "overtaking");
+- ``left|right``: one of these words;
+- ``the?``: the word, or nothing;
+- ``~``: any one word; ``~?``: any one word, or nothing;
+- ``<side>``: a named slot, one of the words of the lexicon class ``side``; a rule's facts
+  can name the slot (``start: adjacent_{side}``) to take the matched word;
+- ``@ego``: a phrase of the lexicon class ``ego`` (several words allowed).
+
+Why a language of our own and not raw regular expressions: the rules are data that people
+who do not read regular expressions add to, every pattern compiles to a regex that is linear
+(no nested quantifiers), and a pattern can only match words, never parts of words.
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Mapping
+
+from arise.language.errors import RuleError
+
+#: Between two words: spaces or a hyphen ("right front" matches "right-front").
+_GAP = r"[\s-]+"
+_WORD = re.compile(r"^[a-z0-9'][a-z0-9'-]*\*?$")
+
+
+def _word(item: str) -> str:
+    """One word of a pattern as a regex: hyphens optional, a trailing * a prefix."""
+    prefix = item.endswith("*")
+    core = item[:-1] if prefix else item
+    if not _WORD.match(item):
+        raise RuleError(f"pattern word {item!r}: use letters, digits, ' and -")
+    parts = [re.escape(part) for part in core.split("-")]
+    body = r"[- ]?".join(parts)
+    return rf"{body}[\w'-]*" if prefix else body
+
+
+def _alternatives(words: list[str]) -> str:
+    return "(?:" + "|".join(_word(word) for word in words) + ")"
+
+
+def compile_pattern(pattern: str, classes: Mapping[str, tuple[str, ...]]) -> re.Pattern[str]:
+    """`pattern` as a case-insensitive regex over text; raises RuleError when malformed."""
+    items = pattern.strip().lower().split()
+    if not items:
+        raise RuleError("an empty pattern")
+    pieces: list[tuple[str, bool]] = []
+    for item in items:
+        optional = item.endswith("?") and len(item) > 1
+        core = item[:-1] if optional else item
+        if core == "~":
+            piece = r"[\w'-]+"
+        elif core.startswith("<") and core.endswith(">"):
+            name = core[1:-1]
+            if name not in classes:
+                raise RuleError(f"pattern {pattern!r}: no lexicon class {name!r}")
+            piece = f"(?P<{name}>{_phrases(classes[name])})"
+        elif core.startswith("@"):
+            name = core[1:]
+            if name not in classes:
+                raise RuleError(f"pattern {pattern!r}: no lexicon class {name!r}")
+            piece = f"(?:{_phrases(classes[name])})"
+        else:
+            piece = _alternatives(core.split("|"))
+        pieces.append((piece, optional))
+    if all(optional for _, optional in pieces):
+        raise RuleError(f"pattern {pattern!r}: every word is optional")
+    body = ""
+    for index, (piece, optional) in enumerate(pieces):
+        last = index == len(pieces) - 1
+        if not optional:
+            body += piece if last else piece + _GAP
+        elif not last:
+            body += f"(?:{piece}{_GAP})?"
+        else:  # an optional last word hangs on the separator before it
+            body = body.removesuffix(_GAP) + f"(?:{_GAP}{piece})?"
+    try:
+        return re.compile(rf"(?<![\w']){body}(?![\w'])", re.I)
+    except re.error as error:  # a slot named twice, ...
+        raise RuleError(f"pattern {pattern!r}: {error}") from error
+
+
+def _phrases(phrases: tuple[str, ...]) -> str:
+    """Several-word phrases of a class, longest first so "ego vehicle" beats "ego"."""
+    ordered = sorted(phrases, key=len, reverse=True)
+    return "|".join(_GAP.join(_word(word) for word in phrase.split()) for phrase in ordered)

@@ -1,0 +1,40 @@
+"""A description read once: its cast, with its clauses and pronouns resolved."""
+
+from __future__ import annotations
+
+import re
+from dataclasses import replace
+
+from arise.language.cast import Cast, Mention, Span, read_cast
+from arise.language.clauses import read_clauses
+
+# A pronoun that opens a clause ("..., it then stops", "He braked").
+_PRONOUN = re.compile(r"(?:\s|then|suddenly|also|and)*\b(it|he|she|they)\b", re.I)
+
+
+def parse(text: str) -> Cast:
+    """The cast and clauses of `text`; a pronoun opening a clause joins the spans of the
+    subject that clause carries on, so the words after it count as that actor's."""
+    cast = read_cast(text)
+    clauses = read_clauses(cast)
+    ego = list(cast.ego)
+    others = list(cast.others)
+    for clause in clauses:
+        found = _PRONOUN.match(text, clause.start, clause.end)
+        if found is None or clause.explicit or clause.subject is None:
+            continue
+        span = Span(found.start(1), found.end(1))
+        plural = found.group(1).lower() == "they"
+        if clause.subject == "ego":
+            if not plural:
+                ego.append(span)
+            continue
+        assert isinstance(clause.subject, Mention)
+        current = next((m for m in others if m.spans[0] == clause.subject.spans[0]), None)
+        if current is None or (plural and current.count == 1):
+            continue
+        others[others.index(current)] = current.with_span(span)
+    if len(ego) == len(cast.ego) and all(a is b for a, b in zip(others, cast.others, strict=True)):
+        return replace(cast, clauses=tuple(clauses))
+    resolved = Cast(text, tuple(sorted(ego, key=lambda s: s.start)), tuple(others), cast.skipped)
+    return replace(resolved, clauses=tuple(read_clauses(resolved)))
