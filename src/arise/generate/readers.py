@@ -21,6 +21,7 @@ from arise.language.cast import (
     sentence_end,
 )
 from arise.language.reading import parse
+from arise.language.rules import Fact, rulebook
 from arise.vocabulary import (
     AdversaryManeuver,
     AdversaryType,
@@ -35,63 +36,6 @@ _SIDE = r"(?:the |its |his |her |their |the ego's |the av's )?"
 _SIDE_ROAD = (
     r"(?:from|out of) (?:the |a )?(?:side road|side street|cross street|driveway|"
     r"minor road|junction)(?: on| to)? "
-)
-# (position, pattern); the earliest cue in an actor's words wins, ties in this order.
-_POSITION_CUES: tuple[tuple[RelativePosition, str], ...] = (
-    (
-        RelativePosition.ONCOMING,
-        r"oncoming|coming the other way|from the opposite direction|"
-        r"in the opposite direction|opposite direction|head[- ]on|coming towards?|"
-        r"approaching from the front|travell?ing towards? the (?:ego|av)",
-    ),
-    (
-        RelativePosition.ADJACENT_LANE_LEFT,
-        rf"(?:from |coming up )?behind on {_SIDE}left|"
-        rf"in {_SIDE}left lane|lane to {_SIDE}left|left[- ]hand lane|left adjacent lane|"
-        r"adjacent left lane|overtak\w+ (?:the ego |the av |it )?on (?:its|the) left|"
-        rf"(?:on|in|from) {_SIDE}left[- ]front|alongside on {_SIDE}left|on {_SIDE}left side of "
-        rf"the (?:ego|av)|from (?:the |an? )?[\w-]+ (?:on|to) {_SIDE}left(?![- ]turn)",
-    ),
-    (
-        RelativePosition.ADJACENT_LANE_RIGHT,
-        rf"(?:from |coming up )?behind on {_SIDE}right|"
-        rf"in {_SIDE}right lane|lane to {_SIDE}right|right[- ]hand lane|right adjacent lane|"
-        r"adjacent right lane|bike lane|overtak\w+ (?:the ego |the av |it )?on (?:its|the) right|"
-        rf"(?:on|in|from) {_SIDE}right[- ]front|alongside on {_SIDE}right|on {_SIDE}right side "
-        r"of the (?:ego|av)|(?:from|off|via) (?:the |an? )?(?:on-?ramp|slip road|entry ramp)|"
-        rf"from (?:the |an? )?[\w-]+ (?:on|to) {_SIDE}right",
-    ),
-    (
-        RelativePosition.ROADSIDE_LEFT,
-        r"left (?:sidewalk|pavement|kerb|curb|corner|roadside|"
-        r"shoulder)|opposite (?:sidewalk|pavement|side of the (?:road|street))|far side|"
-        r"parked (?:\w+ )?on the left|left side of the (?:road|street)",
-    ),
-    (
-        RelativePosition.ROADSIDE_RIGHT,
-        r"right (?:sidewalk|pavement|kerb|curb|corner|roadside|"
-        r"shoulder)|(?:parked|standing|stopped) (?:\w+ )?on the right|"
-        r"right side of the (?:road|street)|at the curb|by the curb|at a bus stop",
-    ),
-    (RelativePosition.CROSSING_FROM_LEFT, rf"from {_SIDE}left|from left|{_SIDE_ROAD}{_SIDE}left"),
-    (
-        RelativePosition.CROSSING_FROM_RIGHT,
-        rf"from {_SIDE}right|from right|{_SIDE_ROAD}{_SIDE}right",
-    ),
-    (
-        RelativePosition.BEHIND_SAME_LANE,
-        r"from behind(?!\s+(?:a|an|the|some)\s+(?!ego\b|av\b))|behind the (?:ego|av)|behind it\b|"
-        r"following the (?:ego|av)|approaching from the rear|rear[- ]end\w*|"
-        r"(?:a|an|the) following \w+",
-    ),
-    (
-        RelativePosition.AHEAD_SAME_LANE,
-        r"ahead in (?:the same|its|the ego's|the av's) lane|"
-        r"in (?:its|the ego's|the av's|the same) lane|in front of the (?:ego|av)|ahead of "
-        r"(?:the ego|the av|it|them)|lead(?:ing)? \w+|riding ahead|driving ahead|"
-        r"stopped ahead|ahead,? in|edge of (?:its|the ego's|the av's) lane|"
-        r"following (?:a|an)|following the (?!ego|av)",
-    ),
 )
 # The lane the ego moves into ("a car coming up in that lane"): resolved by the ego's own
 # lane change ("moves into the left lane").
@@ -227,14 +171,16 @@ def read_position(cast: Cast, mention: Mention) -> GroundedFact | None:
     best: tuple[int, int, RelativePosition, str] | None = None
     for start, end in words_of(cast, mention):
         words = cast.text[start:end]
-        # The cues' look-aheads may see a little past the stretch ("from behind | a parked
-        # van"); the cue itself must lie inside it.
-        seen = cast.text[start : end + 40]
+        # A rule's `unless` may see a little past the stretch ("from behind | a parked
+        # van"); the cue itself must lie inside it. The first hit of each position counts.
         cues: list[tuple[int, int, RelativePosition, str]] = []
-        for order, (position, pattern) in enumerate(_POSITION_CUES):
-            match = re.search(rf"\b(?:{pattern})\b", seen, re.I)
-            if match and match.end() <= len(words):
-                cues.append((start + match.start(), order, position, match.group(0)))
+        seen_values: set[str] = set()
+        for hit in rulebook().hits(Fact.START, cast.text, start, end + 40):
+            if hit.value in seen_values:
+                continue
+            seen_values.add(hit.value)
+            if hit.end <= end:
+                cues.append((hit.start, hit.order, RelativePosition(hit.value), hit.quote))
         beside = [c for c in cues if c[2] in _ADJACENT]
         if beside and any(c[2] is RelativePosition.BEHIND_SAME_LANE for c in cues):
             # "comes from behind in the left lane": behind, but in the lane beside the ego.
@@ -789,3 +735,39 @@ def read_description(description: str, adversary_quote: str | None = None) -> Re
     read_ego_plan(reading)
     read_ego_on_ramp(reading)
     return reading
+
+
+def read_facts(description: str) -> dict[str, dict[str, str]]:
+    """Every fact the rules read from `description`, by whom: "ego", "scene", and each
+    other actor by its quote. What a rule's examples are checked against
+    (tests/language/test_rule_examples.py)."""
+    reading = read_description(description)
+    cast = reading.cast
+    found: dict[str, dict[str, str]] = {"ego": {}, "scene": {}}
+    for mention in cast.others:
+        facts: dict[str, str] = {"class": mention.cls.value, "count": str(mention.count)}
+        position = read_compass(cast, mention) or read_position(cast, mention)
+        if position is not None:
+            facts[Fact.START.value] = position.value
+        if read_stationary(cast, mention) is not None:
+            facts[Fact.STATIONARY.value] = "true"
+        found[mention.quote] = facts
+    names = {
+        "ego_maneuver": ("ego", "maneuver"),
+        "ego_lane_side": ("ego", Fact.LANE_SIDE.value),
+        "ego_plan": ("ego", Fact.EGO_PLAN.value),
+        "ego_stopped": ("ego", Fact.EGO_HELD.value),
+        "ego_on_ramp": ("ego", Fact.EGO_ON_RAMP.value),
+        "weather": ("scene", "weather"),
+    }
+    for name, fact in reading.facts.items():
+        if name in names:
+            who, key = names[name]
+            found[who][key] = fact.value
+    if reading.adversary is not None:
+        adversary = found[reading.adversary.quote]
+        adversary["adversary"] = "true"
+        for name in ("adversary_maneuver", "start_detail"):
+            if name in reading.facts:
+                adversary[name] = reading.facts[name].value
+    return found

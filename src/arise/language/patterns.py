@@ -24,8 +24,9 @@ from collections.abc import Mapping
 
 from arise.language.errors import RuleError
 
-#: Between two words: spaces or a hyphen ("right front" matches "right-front").
-_GAP = r"[\s-]+"
+#: Between two words: spaces, a hyphen or a comma ("right front" matches "right-front",
+#: "ahead in" matches "ahead, in").
+_GAP = r"(?:\s*,\s*|[\s-]+)"
 _WORD = re.compile(r"^[a-z0-9'][a-z0-9'-]*\*?$")
 
 

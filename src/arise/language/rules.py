@@ -1,0 +1,211 @@
+"""Reading rules as data: each rule is phrase patterns, the fact they give, and examples.
+
+A rule file (data/rules/*.yaml) is a list of rules:
+
+    - id: start.oncoming
+      fact: start              # what it tells (see Fact)
+      value: oncoming          # the value; "{side}" takes the word a <side> slot matched
+      about: actor             # whose fact: the actor whose words hold the match (actor),
+                               # the subject of its clause (subject), or the scene
+      when: [oncoming, coming the other way]      # patterns (arise.language.patterns)
+      unless: [oncoming lane]  # optional: a match inside one of these does not count
+      examples:                # at least one; tests/language runs every one
+        - text: An oncoming bus swings wide into the ego's lane.
+          actor: bus           # a word of the actor's quote, or "ego"
+          gives: {start: oncoming}
+
+Rules of one fact are tried in file order; where two match, the earlier match in the text
+wins and, on a tie, the earlier rule. Adding coverage means adding a rule with its example,
+not editing code.
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Iterator
+from dataclasses import dataclass
+from enum import StrEnum
+from functools import cache
+from importlib import resources
+
+import yaml
+from pydantic import BaseModel, ConfigDict, Field, ValidationError, field_validator
+
+from arise.language.errors import RuleError
+from arise.language.lexicon import lexicon
+from arise.language.patterns import compile_pattern
+
+
+class Fact(StrEnum):
+    """What a rule tells."""
+
+    START = "start"  # where an actor starts, seen from the ego (a RelativePosition)
+    START_DETAIL = "start_detail"  # which end of the lane beside the ego (a StartDetail)
+    STATIONARY = "stationary"  # the actor stays put ("parked", "stalled")
+    MOVING = "moving"  # words that move it ("pulls out", "crosses")
+    TURN = "turn"  # which way an actor goes: turn_left, turn_right, straight, change_lane
+    LANE_SIDE = "lane_side"  # the side an actor's lane change goes to
+    EGO_PLAN = "ego_plan"  # what the ego does besides its route (an EgoPlan)
+    EGO_HELD = "ego_held"  # the ego stands still for the scene
+    EGO_ON_RAMP = "ego_on_ramp"  # the ego comes up an on-ramp
+    ROAD = "road"  # the road type (a RoadType), or "mid_block"
+    SKY = "sky"  # a weather word: HardRain, SoftRain, MidRain, Wet, Cloudy, Clear
+    LIGHT = "light"  # a light word: Night, Sunset, Noon
+    VISIBILITY = "visibility"  # fog, mist, haze, smoke, dense_fog
+    GLARE = "glare"  # the sun low in the driver's eyes
+    CONTACT = "contact"  # where the ego was touched: front, rear, left, right, ...
+    IMPLIED = "implied"  # an actor the words imply without naming it (an ActorRole)
+    SIGNAL = "signal"  # which side a road user signalled to
+
+
+class Target(StrEnum):
+    ACTOR = "actor"  # the actor whose words hold the match
+    SUBJECT = "subject"  # the subject of the clause holding the match
+    SCENE = "scene"  # the description as a whole
+
+
+class Example(BaseModel):
+    model_config = ConfigDict(extra="forbid")
+
+    text: str
+    actor: str | None = None
+    gives: dict[str, str]
+
+
+class Rule(BaseModel):
+    model_config = ConfigDict(extra="forbid")
+
+    id: str = Field(pattern=r"^[a-z_]+(?:\.[a-z0-9_]+)+$")
+    fact: Fact
+    value: str
+    about: Target
+    when: list[str] = Field(min_length=1)
+    unless: list[str] = Field(default_factory=list)
+    examples: list[Example] = Field(min_length=1)
+
+    @field_validator("when", "unless")
+    @classmethod
+    def _patterns_compile(cls, patterns: list[str]) -> list[str]:
+        for pattern in patterns:
+            compile_pattern(pattern, lexicon().classes)
+        return patterns
+
+
+@dataclass(frozen=True)
+class Hit:
+    """One match of a rule: the value it gives and the words it rests on."""
+
+    rule: Rule
+    value: str
+    start: int
+    end: int
+    quote: str
+    order: int  # the rule's place among the rules of its fact
+
+
+@dataclass(frozen=True)
+class CompiledRule:
+    rule: Rule
+    when: tuple[re.Pattern[str], ...]
+    unless: tuple[re.Pattern[str], ...]
+    order: int
+
+    def hits(self, text: str, start: int = 0, end: int | None = None) -> Iterator[Hit]:
+        """Matches that lie inside text[start:end] and inside no `unless` match."""
+        stop = len(text) if end is None else end
+        vetoes = [m.span() for p in self.unless for m in p.finditer(text)]
+        for pattern in self.when:
+            for match in pattern.finditer(text, start):
+                if match.end() > stop:
+                    break
+                if any(a <= match.start() and match.end() <= b for a, b in vetoes):
+                    continue
+                slots = {k: v.lower() for k, v in match.groupdict().items() if v}
+                yield Hit(
+                    rule=self.rule,
+                    value=self.rule.value.format(**slots) if slots else self.rule.value,
+                    start=match.start(),
+                    end=match.end(),
+                    quote=match.group(0),
+                    order=self.order,
+                )
+
+
+@dataclass(frozen=True)
+class RuleBook:
+    rules: tuple[CompiledRule, ...]
+
+    def of(self, fact: Fact) -> tuple[CompiledRule, ...]:
+        return tuple(rule for rule in self.rules if rule.rule.fact is fact)
+
+    def hits(self, fact: Fact, text: str, start: int = 0, end: int | None = None) -> list[Hit]:
+        """Every hit of the rules of `fact` in text[start:end], earliest first, then by rule
+        order."""
+        found = [hit for rule in self.of(fact) for hit in rule.hits(text, start, end)]
+        return sorted(found, key=lambda hit: (hit.start, hit.order))
+
+    def first(self, fact: Fact, text: str, start: int = 0, end: int | None = None) -> Hit | None:
+        found = self.hits(fact, text, start, end)
+        return found[0] if found else None
+
+    def by_order(self, fact: Fact, text: str, start: int = 0, end: int | None = None) -> Hit | None:
+        """The hit of the first rule (in file order) that matches at all."""
+        for rule in self.of(fact):
+            hit = next(rule.hits(text, start, end), None)
+            if hit is not None:
+                return hit
+        return None
+
+
+RULE_FILES = (
+    "start.yaml",
+    "motion.yaml",
+    "ego.yaml",
+    "scene.yaml",
+    "weather.yaml",
+    "contact.yaml",
+)
+
+
+def load_rules(text: str, where: str) -> list[Rule]:
+    """The rules of one file's text; a malformed rule is a RuleError naming it."""
+    data = yaml.safe_load(text)
+    if not isinstance(data, list):
+        raise RuleError(f"{where}: a rule file is a list of rules")
+    rules = []
+    for index, item in enumerate(data):
+        try:
+            rules.append(Rule.model_validate(item))
+        except ValidationError as error:
+            name = item.get("id", f"#{index + 1}") if isinstance(item, dict) else f"#{index + 1}"
+            problem = error.errors()[0]
+            raise RuleError(
+                f"{where}: rule {name}: {'.'.join(map(str, problem['loc']))}: {problem['msg']}"
+            ) from error
+    return rules
+
+
+@cache
+def rulebook() -> RuleBook:
+    """Every shipped rule, compiled; rule ids are unique."""
+    folder = resources.files("arise.language").joinpath("data/rules")
+    compiled: list[CompiledRule] = []
+    seen: set[str] = set()
+    counts: dict[Fact, int] = {}
+    for name in RULE_FILES:
+        for rule in load_rules(folder.joinpath(name).read_text("utf-8"), name):
+            if rule.id in seen:
+                raise RuleError(f"{name}: rule id {rule.id} is used twice")
+            seen.add(rule.id)
+            classes = lexicon().classes
+            order = counts.get(rule.fact, 0)
+            counts[rule.fact] = order + 1
+            compiled.append(
+                CompiledRule(
+                    rule=rule,
+                    when=tuple(compile_pattern(p, classes) for p in rule.when),
+                    unless=tuple(compile_pattern(p, classes) for p in rule.unless),
+                    order=order,
+                )
+            )
+    return RuleBook(tuple(compiled))
