@@ -11,8 +11,8 @@ from __future__ import annotations
 import re
 
 from arise.generate.readers import (
-    MOVING,
     Reading,
+    moves,
     read_compass,
     read_position,
     read_stationary,
@@ -95,7 +95,7 @@ def read_actors(reading: Reading) -> list[Actor]:
         position = read_compass(cast, mention) or read_position(cast, mention)
         start = RelativePosition(position.value) if position is not None else None
         stationary = read_stationary(cast, mention) is not None or bool(
-            _WAITS.search(words) and not MOVING.search(words)
+            _WAITS.search(words) and not any(moves(cast.text, a, b) for a, b in stretches)
         )
         role = _role(
             cls=mention.cls,

@@ -44,35 +44,8 @@ _TARGET_LANE = re.compile(
     r"(?:enters|is entering|moves into|changes into|merges into|turns into|is turning into)\b",
     re.I,
 )
-_EGO_LANE_SIDE = re.compile(
-    r"\b(?:chang\w*|mov\w*|merg\w*|pull\w*|steer\w*|swerv\w*)(?: \w+){0,2} "
-    r"(?:in)?to (?:the )?(left|right)(?: lane|\b)",
-    re.I,
-)
 # "on the right"/"on its left" alone: a lane for a vehicle, the roadside for a walker.
 _BARE_SIDE = re.compile(rf"\b(?:on|to) {_SIDE}(left|right)\b(?![- ]turn)", re.I)
-
-_TURN = re.compile(
-    r"\b(?:turns?|turning|turned|to turn|makes? an? (?:unprotected )?|making an? "
-    r"(?:unprotected )?|takes? an? |performs? an? (?:unprotected )?)\s*(left|right)\b|"
-    r"(?<!from the )(?<!from its )\b(?:unprotected )?(left|right)[- ]turn(?:ing|s)?\b"
-    r"(?!\s+(?:left|right))|\bunprotected (left)\b",
-    re.I,
-)
-_STRAIGHT = re.compile(
-    r"\b(?:go(?:es|ing)?|continu\w*|driv\w*|head\w*|proceed\w*|keep\w*(?: going)?|"
-    r"went|carr\w+ on|travel\w*) straight\b|\bstraight (?:through|across|ahead|on)\b|"
-    r"\bdoes not turn\b|\b(?:cross\w*|pass\w*|go\w* through|driv\w* through) (?:an?|the) "
-    r"(?:\w+ )?(?:intersection|junction|crossroads)\b|\bkeeps? (?:to )?(?:its|the) lane\b",
-    re.I,
-)
-_LANE_CHANGE = re.compile(
-    r"\bchang\w* (?:in)?to (?:the )?(?:left|right|adjacent|next|other|oncoming) lane|"
-    r"\bchang\w* lanes?\b|\bmoves? (?:over )?into (?:the )?(?:left|right|oncoming|adjacent|"
-    r"next) lane|\bpulls? (?:out )?into (?:the )?(?:left|right|oncoming|opposite) lane|"
-    r"\bswerves? into (?:the )?(?:left|right|adjacent|next) lane",
-    re.I,
-)
 
 
 @dataclass
@@ -207,7 +180,7 @@ def read_position(cast: Cast, mention: Mention) -> GroundedFact | None:
             )
             best = (start + bare.start(), 99, position, bare.group(0))
         target = _TARGET_LANE.search(words)
-        lane_side = _EGO_LANE_SIDE.search(cast.text)
+        lane_side = rulebook().first(Fact.LANE_SIDE, cast.text)
         if target and not lane_side and (best is None or start + target.start() < best[0]):
             # The lane the ego turns into, with no lane change said: ahead on its route.
             best = (start + target.start(), -1, RelativePosition.AHEAD_SAME_LANE, target.group(0))
@@ -221,14 +194,14 @@ def read_position(cast: Cast, mention: Mention) -> GroundedFact | None:
         ):
             position = (
                 RelativePosition.ADJACENT_LANE_LEFT
-                if lane_side.group(1).lower() == "left"
+                if lane_side.value == "left"
                 else RelativePosition.ADJACENT_LANE_RIGHT
             )
             best = (
                 start + target.start(),
                 -1,
                 position,
-                f"{lane_side.group(0)} ... {target.group(0)}",
+                f"{lane_side.quote} ... {target.group(0)}",
             )
     if best is None:
         return None
@@ -382,13 +355,8 @@ def read_maneuvers(reading: Reading) -> None:
     ego: tuple[EgoManeuver, str] | None = None
     adversary: tuple[AdversaryManeuver, str] | None = None
     found: list[tuple[int, str, str]] = []
-    for match in _TURN.finditer(cast.text):
-        side = next(g for g in match.groups() if g).lower()
-        found.append((match.start(), f"turn_{side}", match.group(0)))
-    for match in _STRAIGHT.finditer(cast.text):
-        found.append((match.start(), "straight", match.group(0)))
-    for match in _LANE_CHANGE.finditer(cast.text):
-        found.append((match.start(), "change_lane", match.group(0)))
+    for hit in rulebook().hits(Fact.TURN, cast.text):
+        found.append((hit.start, hit.value, hit.quote))
     for position, kind, words in sorted(found):
         subject = _subject(cast, position)
         if subject is None and re.match(r"unprotected", words, re.I):
@@ -413,13 +381,10 @@ def read_maneuvers(reading: Reading) -> None:
             name="ego_maneuver", value=ego[0].value, source=FactSource.TEXT, quote=ego[1]
         )
     if ego is not None and ego[0] is EgoManeuver.CHANGE_LANE:
-        for match in _EGO_LANE_SIDE.finditer(cast.text):
-            if _subject(cast, match.start()) == "ego":
+        for hit in rulebook().hits(Fact.LANE_SIDE, cast.text):
+            if _subject(cast, hit.start) == "ego":
                 reading.facts["ego_lane_side"] = GroundedFact(
-                    name="ego_lane_side",
-                    value=match.group(1).lower(),
-                    source=FactSource.TEXT,
-                    quote=match.group(0),
+                    name="ego_lane_side", value=hit.value, source=FactSource.TEXT, quote=hit.quote
                 )
                 break
     if adversary is not None:
@@ -517,19 +482,9 @@ def read_start_detail(reading: Reading) -> None:
             return
 
 
-_STATIONARY = re.compile(
-    r"\b(?:parked|double[- ]parked|stalled|broken[- ]down|stationary|abandoned|"
-    r"(?:is |was |sits |stands |standing )?stopped|sits|lies|lying|standing still|"
-    r"at a standstill|not moving)\b",
-    re.I,
-)
-MOVING = re.compile(
-    r"\b(?:pulls?|pulled|start\w*|accelerat\w*|moves?|moving|drives?|driving|turns?|"
-    r"turning|cross\w*|runs?|running|rides?|riding|walks?|walking|steps?|swerv\w*|"
-    r"merg\w*|cuts?|reverses?|backs?|rolls?|speeds?|brakes?|braking|slows?|suddenly|"
-    r"abruptly|sharply|hard)\b",
-    re.I,
-)
+def moves(text: str, start: int, end: int) -> bool:
+    """Whether text[start:end] has words that move an actor ("pulls out", "crosses")."""
+    return rulebook().first(Fact.MOVING, text, start, end) is not None
 
 
 # The ego held still for the scene ("stopped at a red light", "waits at the lights",
@@ -650,14 +605,10 @@ def read_stationary(cast: Cast, mention: Mention) -> GroundedFact | None:
     """Whether the words about `mention` say it stays put for the whole scene ("a truck
     parked in its lane", "a stalled car"), and move it nowhere ("a parked car pulls out")."""
     for start, end in words_of(cast, mention):
-        words = cast.text[start:end]
-        still = _STATIONARY.search(words)
-        if still and not MOVING.search(words):
+        still = rulebook().first(Fact.STATIONARY, cast.text, start, end)
+        if still is not None and not moves(cast.text, start, end):
             return GroundedFact(
-                name="adversary_stationary",
-                value="true",
-                source=FactSource.TEXT,
-                quote=still.group(0),
+                name="adversary_stationary", value="true", source=FactSource.TEXT, quote=still.quote
             )
     return None
 

@@ -17,7 +17,7 @@ from __future__ import annotations
 
 import re
 
-from arise.language.cast import Cast, Clause, Mention, Span
+from arise.language.cast import Cast, Clause, Mention, Span, phrase_start
 
 Actor = Mention | str  # a Mention, or "ego"
 
@@ -46,28 +46,36 @@ def _spans(cast: Cast) -> list[tuple[Span, Actor]]:
     return sorted(found, key=lambda item: item[0].start)
 
 
+_PREPOSITION = re.compile(
+    r"^(?:of|in|into|to|from|behind|with|by|for|at|on|onto|toward|towards|past|beside|near|"
+    r"around|ahead|front|than|between|like|before|after|across|along|alongside|over|under|"
+    r"through|off|against|follows|following|hits|hit|struck|strikes|overtakes|passes|sees)$",
+    re.I,
+)
+
+
 def _opening_actor(
     cast: Cast, spans: list[tuple[Span, Actor]], start: int, end: int
 ) -> Actor | None:
-    """The actor named at the start of [start, end), after lead words and an article or
-    a few adjectives ("then a speeding red car")."""
+    """The actor the clause [start, end) is about: the first one named that no preposition
+    (or verb) governs, within its first few words ("At the lights the ego turns", "then a
+    speeding red car"; not "in front of the ego")."""
     head = _LEAD_WORDS.match(cast.text, start)
     first_word = head.end() if head else start
     for span, actor in spans:
         if span.start < first_word or span.start >= end:
             continue
-        between = cast.text[first_word : span.start]
-        if len(between.split()) > 4 or re.search(
-            r"\b(?:of|in|into|to|from|behind|with|by|for|at|on|toward|towards|past|beside|"
-            r"near|ahead|around)\b",
-            between,
-            re.I,
+        phrase = phrase_start(cast.text, span.start)
+        between = cast.text[first_word : max(first_word, phrase)]
+        if len(between.split()) > 6:
+            return None
+        words = between.split()
+        if words and _PREPOSITION.match(words[-1].strip(",")):
+            continue  # governed: "in front of the ego", "behind the bus"
+        if cast.text[span.start : span.end].lower().endswith("'s") or re.match(
+            r"'s\b", cast.text[span.end : span.end + 2]
         ):
-            return None
-        if cast.text[span.start : span.end].lower().endswith("'s"):
-            return None  # "the ego's lane"
-        if re.match(r"^'s\b", cast.text[span.end : span.end + 2]):
-            return None
+            continue  # "the ego's lane"
         return actor
     return None
 

@@ -69,7 +69,7 @@ class Example(BaseModel):
 
     text: str
     actor: str | None = None
-    gives: dict[str, str]
+    gives: dict[str, str | None]  # None: the fact must not be given
 
 
 class Rule(BaseModel):
