@@ -17,6 +17,7 @@ from typing import Any
 
 from pydantic import ValidationError
 
+from arise.agents.loader import AgentError, check_agent_spec
 from arise.atomic import write_bytes_atomic
 from arise.limits import MAX_AGENTS, MAX_STEPS
 from arise.maps.registry import MapError, MapRegistry
@@ -62,9 +63,12 @@ def check(
 
     Never raises for a bad script: every failure is in `result.diagnostic`, and
     `result.sandbox` says which confinement the script ran under. Raises OutputError
-    only when the picture asked for (`png`) cannot be written where it was asked.
+    only when the picture asked for (`png`) cannot be written where it was asked, and
+    AgentError (before any worker starts) for an agent name that cannot be one.
     """
     options = (options or CheckOptions()).model_copy(update=overrides)
+    asked_agent = options.agent
+    options = options.model_copy(update={"agent": _checked_agent(options)})
     if not options.require_sandbox and required_by_settings():
         options = options.model_copy(update={"require_sandbox": True})
     path = Path(script)
@@ -135,7 +139,41 @@ def check(
     finally:
         if own_pool:
             active.close()
-    return _accepted(raw, name, choice, info.model, options.png)
+    result = _accepted(raw, name, choice, info.model, options.png)
+    if result.simulation is not None:  # who drove is the parent's to say, not the worker's
+        result.simulation.agent = asked_agent if options.agent is not None else None
+    return result
+
+
+def _checked_agent(options: CheckOptions) -> str | None:
+    """The agent's canonical name for the worker (None: the script drives); AgentError for
+    a name that cannot be an agent, or for an agent CARLA cannot run."""
+    spec = check_agent_spec(options.agent)
+    if spec.scripted:
+        return None
+    if options.simulator == Simulator.CARLA:
+        raise AgentError(carla_agents_problem(spec.text))
+    return spec.text
+
+
+def carla_agents_problem(name: str) -> str:
+    """Why `--agent` cannot drive in CARLA here."""
+    import importlib.util
+
+    try:
+        found = importlib.util.find_spec("agents.navigation.basic_agent") is not None
+    except (ImportError, ValueError):
+        found = False
+    if not found:
+        return (
+            f"agent '{name}' in CARLA needs CARLA's own agents (BasicAgent, BehaviorAgent from "
+            "the `agents.navigation` package of CARLA's PythonAPI), which cannot be imported "
+            "here; put CARLA's PythonAPI/carla folder on PYTHONPATH, or drop --simulator carla"
+        )
+    return (
+        f"agent '{name}' in CARLA: arise does not yet seat CARLA's BasicAgent or "
+        "BehaviorAgent in the ego; run the agent on the offline world model instead"
+    )
 
 
 def _accepted(

@@ -34,6 +34,8 @@ from pathlib import Path
 from types import FrameType
 from typing import Any
 
+from arise.agents.loader import check_agent_spec
+from arise.agents.types import BuiltinAgent
 from arise.errors import AriseError
 from arise.paths import cache_dir
 from arise.validate.lineage import ParentMark, kill_orphaned_workers, own_mark, worker_command
@@ -104,6 +106,7 @@ def _worker_env(
     connect_ports: tuple[int, ...],
     confine: bool,
     die_with_parent: bool,
+    agent: str | None = None,
 ) -> dict[str, str]:
     env = {key: os.environ[key] for key in _PASSED_ENV if key in os.environ}
     env.update(
@@ -115,6 +118,8 @@ def _worker_env(
         ARISE_WORKER_SCRATCH_BYTES=str(SCRATCH_QUOTA_BYTES),
         ARISE_WORKER_CONNECT_PORTS=",".join(str(p) for p in connect_ports),
         ARISE_WORKER_CONFINE="1" if confine else "0",
+        # A user's agent (a checked name, its file absolute): imported before confinement.
+        ARISE_WORKER_AGENT=agent or "",
         # The kernel's parent-death signal fires when the THREAD that started the worker
         # ends, so only the main thread asks for it; the worker's own watch of its parent
         # holds either way.
@@ -175,8 +180,10 @@ class Worker:
         confine: bool = True,
         nice: int = 0,
         on_spawn: Callable[[subprocess.Popen[bytes]], None] | None = None,
+        agent: str | None = None,
     ):
         self.connect_ports = connect_ports
+        self.agent = agent  # the user's agent it imported before confinement, if any
         self.task_limit: TaskLimit | None = None
         self.owner = os.getpid()
         parent = own_mark()
@@ -189,7 +196,7 @@ class Worker:
             stderr=subprocess.DEVNULL,
             start_new_session=True,  # its own process group, which it kills if we die
             cwd=self.scratch,
-            env=_worker_env(self.scratch, memory_mb, connect_ports, confine, on_main_thread),
+            env=_worker_env(self.scratch, memory_mb, connect_ports, confine, on_main_thread, agent),
         )
         _live[self.process.pid] = self
         if _stopping:  # a signal came while it was being started
@@ -456,8 +463,12 @@ class WorkerPool:
         *,
         require_sandbox: bool = False,
         confine: bool = True,
+        agent: str | None = None,
     ):
         self.size = max(1, size)
+        # A user's agent the workers import before confinement (a canonical name from
+        # `arise.agents.check_agent_spec`); a check that asks for another gets a new worker.
+        self.agent = _preloaded(check_agent_spec(agent).text if agent else None)
         self.memory_mb = memory_mb
         self.recycle_after = recycle_after
         self.require_sandbox = require_sandbox
@@ -481,7 +492,9 @@ class WorkerPool:
                 return
         _kill_group(process)
 
-    def _take(self, connect_ports: tuple[int, ...], nice: int = 0) -> Worker:
+    def _take(
+        self, connect_ports: tuple[int, ...], nice: int = 0, agent: str | None = None
+    ) -> Worker:
         """An idle worker confined for these ports, or a new one."""
         if _stopping:
             raise PoolStopped()
@@ -501,8 +514,10 @@ class WorkerPool:
                 worker = self._idle.get()
         else:
             may_start = False
-        if worker is not None and worker.connect_ports != connect_ports:
-            worker.kill()  # its confinement allows other ports; replace it
+        if worker is not None and (
+            worker.connect_ports != connect_ports or (agent is not None and worker.agent != agent)
+        ):
+            worker.kill()  # its confinement allows other ports, or it lacks the agent
             worker, may_start = None, True
         if worker is None and may_start:
             spawned: list[subprocess.Popen[bytes]] = []
@@ -512,7 +527,14 @@ class WorkerPool:
                 self._spawned(process)
 
             try:
-                return Worker(self.memory_mb, connect_ports, self.confine, nice, on_spawn)
+                return Worker(
+                    self.memory_mb,
+                    connect_ports,
+                    self.confine,
+                    nice,
+                    on_spawn,
+                    agent=agent or self.agent,
+                )
             except Exception:
                 with self._lock:
                     self._started -= 1
@@ -583,7 +605,7 @@ class WorkerPool:
         if options.get("simulator") == "carla":
             port = int(options.get("carla_port", 2000))
             ports = (port, port + 1)  # CARLA's RPC port and its streaming port
-        worker = self._take(ports)
+        worker = self._take(ports, agent=_preloaded(options.get("agent")))
         if (self.require_sandbox or options.get("require_sandbox")) and not worker.sandbox.full:
             self._give_back(worker, healthy=True)
             raise SandboxRequired(worker.sandbox)
@@ -622,6 +644,13 @@ class WorkerPool:
 
     def __exit__(self, *exc: object) -> None:
         self.close()
+
+
+def _preloaded(agent: object) -> str | None:
+    """The agent a worker must import before confinement: a user's, not a built-in."""
+    if not isinstance(agent, str) or agent in {b.value for b in BuiltinAgent}:
+        return None
+    return agent
 
 
 class SandboxRequired(AriseError):

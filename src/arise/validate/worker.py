@@ -35,6 +35,15 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+from arise.agents.loader import (
+    AgentError,
+    AgentFactory,
+    AgentSpec,
+    SpecKind,
+    check_agent_spec,
+    load_agent_factory,
+)
+from arise.agents.types import BuiltinAgent
 from arise.errors import AriseError
 from arise.validate.diagnostics import (
     from_exception,
@@ -89,6 +98,49 @@ class _Failed(AriseError):
 
 # --- once per worker --------------------------------------------------------------------
 _VOCABULARY: list[str] = []
+# The user's agent this worker imported before confinement (its canonical name), or why
+# it could not: the script that runs later must not be able to reach the user's files.
+_AGENTS: dict[str, AgentFactory] = {}
+_AGENT_PROBLEMS: dict[str, str] = {}
+
+
+def _preload_agent() -> None:
+    """Import the user's agent the pool named (ARISE_WORKER_AGENT), while files may still
+    be read; a failure is kept and becomes the diagnostic of every check that asks for it."""
+    import arise.agents.builtin  # noqa: F401  (the built-ins, imported once)
+
+    text = os.environ.get("ARISE_WORKER_AGENT", "").strip()
+    if not text:
+        return
+    try:
+        spec = check_agent_spec(text)
+        _AGENTS[spec.text] = load_agent_factory(spec)
+    except AgentError as error:
+        _AGENT_PROBLEMS[text] = str(error)
+
+
+def _agent_for(options: CheckOptions) -> tuple[str, AgentFactory] | None:
+    """Who drives the ego in this check: None for the script's own behavior."""
+    name = options.agent
+    if name is None or name == BuiltinAgent.SCRIPTED.value:
+        return None
+    if name in {agent.value for agent in BuiltinAgent}:
+        builtin = BuiltinAgent(name)
+        return name, load_agent_factory(AgentSpec(SpecKind.BUILTIN, name, builtin=builtin))
+    if name in _AGENTS:
+        return name, _AGENTS[name]
+    problem = _AGENT_PROBLEMS.get(name) or (
+        f"agent '{name[:200]}' was not imported by this worker before confinement"
+    )
+    raise _Failed(
+        Diagnostic(
+            stage=Stage.SIMULATE,
+            error_type="AgentError",
+            message=problem,
+            hint="the agent failed, not the script: fix the agent's file or class (a pool "
+            "made by hand needs WorkerPool(agent=...) for a user's agent).",
+        )
+    )
 
 
 def _warm_up() -> None:
@@ -107,6 +159,8 @@ def _warm_up() -> None:
 
     import arise.validate.render  # noqa: F401
     import arise.validate.worldmodel.simulator  # noqa: F401
+
+    _preload_agent()
 
     _import_verifai()
     from arise.validate import gate
@@ -261,6 +315,9 @@ def _agent_traces(simulation: Any) -> list[AgentTrace]:
         ]
         blueprint = getattr(obj, "blueprint", None)
         behavior = getattr(obj, "behavior", None)
+        driver = getattr(simulation, "arise_driver", None)
+        if is_ego and driver is not None:
+            behavior = driver.agent  # the agent drove; the script's behavior was off
         lanes = _lane_reading(simulation, points)
         traces.append(
             AgentTrace(
@@ -325,11 +382,31 @@ def _lane_reading(simulation: Any, points: list[TracePoint]) -> LaneReading | No
 
 
 def _scene_params(scene: Any) -> dict[str, str]:
-    return {
+    params = {
         str(name): str(value)
         for name, value in dict(scene.params).items()
         if isinstance(value, str | int | float | bool)
     }
+    weather = _weather_text(scene.params.get("weather"))
+    if weather is not None:
+        params["weather"] = weather
+    return params
+
+
+def _weather_text(value: Any) -> str | None:
+    """A weather dict as the JSON object the parent reads back (`Weather.from_param_text`);
+    None for anything but a small dict of names to numbers."""
+    if not isinstance(value, dict) or len(value) > 32:
+        return None
+    if not all(
+        isinstance(k, str)
+        and len(k) <= 64
+        and isinstance(v, int | float)
+        and not isinstance(v, bool)
+        for k, v in value.items()
+    ):
+        return None
+    return json.dumps({k: float(v) for k, v in value.items()})
 
 
 def _simulation_facts(simulation: Any) -> SimulationFacts:
@@ -338,8 +415,11 @@ def _simulation_facts(simulation: Any) -> SimulationFacts:
     agents = _agent_traces(simulation)
     events = [dict(e) for e in getattr(simulation, "arise_events", [])]
     result = simulation.result
+    steps = max(0, len(result.trajectory) - 1)
+    driver = getattr(simulation, "arise_driver", None)
+    signals = getattr(simulation, "arise_signals", None)
     return SimulationFacts(
-        steps=max(0, len(result.trajectory) - 1),
+        steps=steps,
         timestep=float(simulation.timestep),
         termination_type=str(result.terminationType.name),
         termination_reason=str(result.terminationReason),
@@ -348,6 +428,9 @@ def _simulation_facts(simulation: Any) -> SimulationFacts:
         ego_pairs=ego_pair_facts(agents),
         events=events,
         params=_scene_params(simulation.scene),
+        route=getattr(simulation, "arise_route", None),
+        agent=driver.name if driver is not None else None,
+        signals=signals.traces(steps) if signals is not None else [],
     )
 
 
@@ -429,6 +512,13 @@ def run_check(request: dict[str, Any], emit: Emit, scratch: Path) -> CheckResult
                 raise _Failed(diagnostic) from None
     except _Failed as failure:
         result.diagnostic = failure.diagnostic
+    except AgentError as error:  # the user's agent failed (raised, bad control): not the script
+        result.diagnostic = Diagnostic(
+            stage=stage,
+            error_type="AgentError",
+            message=str(error),
+            hint="the agent failed, not the script: fix the agent.",
+        )
     except MemoryError as error:
         result.diagnostic = from_exception(error, stage, text, path, info, _VOCABULARY)
         result.diagnostic.message = (
@@ -463,6 +553,7 @@ def _run_stages(
     from scenic.core.simulators import SimulationCreationError
 
     started = enter(Stage.GATE)
+    agent = _agent_for(options)
     model, notes = _model_problem(info, text, options)
     result.warnings.extend(notes)
     if map_choice is not None and map_choice.substituted and map_choice.reason:
@@ -520,6 +611,8 @@ def _run_stages(
         started = enter(Stage.SIMULATE)
         if simulator is None:
             simulator = scenario.getSimulator()
+            if agent is not None and hasattr(simulator, "arise_agent"):
+                simulator.arise_agent = agent
         log = io.StringIO()
         try:
             with redirect_stdout(log):

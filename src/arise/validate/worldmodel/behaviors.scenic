@@ -40,3 +40,9 @@ behavior CrossingBehavior(reference_actor, min_speed=1, threshold=10, final_spee
         do WalkForwardBehavior(final_speed)
     else:
         take SetSpeedAction(final_speed)
+
+behavior AgentDrivesBehavior():
+    """Holds the ego's seat while a driving agent drives it (`driver`): it takes no action,
+    the world model applies the agent's control each step."""
+    while True:
+        wait

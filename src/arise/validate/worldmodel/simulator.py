@@ -19,20 +19,23 @@ from scenic.domains.driving.controllers import (
 )
 from scenic.domains.driving.simulators import DrivingSimulation, DrivingSimulator
 
+from arise.agents.dynamics import MAX_ACCELERATION, MAX_BRAKING, MIN_WHEELBASE
+from arise.agents.loader import AgentFactory, make_agent
 from arise.validate.worldmodel.blueprints import check_blueprint
 from arise.validate.worldmodel.curves import CurveSpeedGovernor, GovernedLongitudinalController
+from arise.validate.worldmodel.driver import EgoDriver
 from arise.validate.worldmodel.feedforward import (
     FollowedPath,
     feed_forward_steer,
     heading_damping,
 )
 from arise.validate.worldmodel.linegeometry import wrap_angle
+from arise.validate.worldmodel.route import read_route
+from arise.validate.worldmodel.signals import SignalModel
 from arise.validate.worldmodel.weather import check_weather
 
-MAX_ACCELERATION = 5.6  # m/s^2
-MAX_BRAKING = 6.8  # m/s^2
 DEFAULT_TIMESTEP = 0.1
-MIN_WHEELBASE = 4.0  # metres
+DEFAULT_STEPS = 300  # what a route is made long enough for when no step limit is given
 AUTOPILOT_LOOKAHEAD_MIN = 5.0  # metres
 AUTOPILOT_GAP = 8.0  # metres kept to whatever is ahead
 # Speed up to which the lateral gains apply as tuned; above it they shrink with 1/v^2.
@@ -97,6 +100,18 @@ class SpeedScheduledLateralController(PIDLateralController):
         return max(-1.0, min(1.0, output))
 
 
+def _seat_behavior(scene: Any) -> Any:
+    """`AgentDrivesBehavior` of the world model's behaviors, as compiled for this scene
+    (Scenic compiles its modules per scenario and keeps them out of sys.modules)."""
+    for namespaces in dict(scene.behaviorNamespaces).values():
+        for namespace in namespaces if isinstance(namespaces, tuple) else (namespaces,):
+            if isinstance(namespace, dict) and "AgentDrivesBehavior" in namespace:
+                return namespace["AgentDrivesBehavior"]
+    from arise.agents.loader import AgentError
+
+    raise AgentError("the world model's AgentDrivesBehavior is missing from the scene")
+
+
 class OfflineCarlaSimulator(DrivingSimulator):
     """Scenic simulator interface for the offline CARLA world model."""
 
@@ -104,20 +119,72 @@ class OfflineCarlaSimulator(DrivingSimulator):
         super().__init__()
         self.network = network
         self.timestep = float(timestep)
+        # Who drives the ego (set by the worker): the agent's name and what makes one per
+        # simulation; None leaves the script's own behavior at the wheel.
+        self.arise_agent: tuple[str, AgentFactory] | None = None
 
     def createSimulation(self, scene: Any, **kwargs: Any) -> OfflineCarlaSimulation:
         check_weather(scene.params.get("weather"))
         if kwargs.get("timestep") is None:
             kwargs["timestep"] = self.timestep
-        return OfflineCarlaSimulation(scene, self.network, **kwargs)
+        return OfflineCarlaSimulation(scene, self.network, agent=self.arise_agent, **kwargs)
 
 
 class OfflineCarlaSimulation(DrivingSimulation):
-    def __init__(self, scene: Any, network: Any, **kwargs: Any):
+    def __init__(
+        self,
+        scene: Any,
+        network: Any,
+        agent: tuple[str, AgentFactory] | None = None,
+        **kwargs: Any,
+    ):
         self.network = network
         self.arise_events: list[dict[str, Any]] = []
         self.arise_lights: dict[str, str] = {}
+        timestep = float(kwargs.get("timestep") or DEFAULT_TIMESTEP)
+        self.arise_signals = SignalModel(network, timestep)
+        self.arise_route: Any = None  # the ego's EgoRoute, read at setup
+        self.arise_driver: EgoDriver | None = None
+        self._arise_agent = agent
+        self._arise_steps = int(kwargs.get("maxSteps") or DEFAULT_STEPS)
         super().__init__(scene, **kwargs)
+
+    def setup(self) -> None:
+        """Create the objects, read the ego's route, and seat the agent if one drives."""
+        super().setup()
+        ego = self.scene.egoObject
+        if ego is None or ego not in self.objects:
+            return
+        try:
+            self.arise_route = read_route(
+                self.scene, ego, self.network, self._arise_steps, self.timestep
+            )
+        except Exception:  # an odd map or scene must not cost a scripted run its facts
+            self.arise_route = None
+        if self._arise_agent is None:
+            return
+        name, factory = self._arise_agent
+        if self.arise_route is None:
+            from arise.agents.loader import AgentError
+
+            raise AgentError(
+                f"agent '{name}' cannot drive: the ego starts on no lane of the map, so it has "
+                "no route"
+            )
+        # The agent drives: the script's ego behavior is replaced by one that does nothing
+        # (Scenic wants every agent of the scene to have a behavior).
+        ego.behavior = _seat_behavior(self.scene)()
+        ego.arise_autopilot = None
+        self.arise_driver = EgoDriver(
+            make_agent(factory, name),
+            name,
+            self.arise_route,
+            ego,
+            self.objects,
+            self.arise_signals,
+            self.network,
+            self.timestep,
+        )
 
     # --- object life cycle -------------------------------------------------------
     def createObjectInSimulator(self, obj: Any) -> None:
@@ -145,6 +212,8 @@ class OfflineCarlaSimulation(DrivingSimulation):
     # --- physics -------------------------------------------------------------------
     def step(self) -> None:
         dt = self.timestep
+        if self.arise_driver is not None:
+            self.arise_driver.drive(self.currentTime)
         for obj in self.objects:
             if getattr(obj, "arise_autopilot", None):
                 self._drive_autopilot(obj)
@@ -284,6 +353,9 @@ class OfflineCarlaSimulation(DrivingSimulation):
         signals = self._signals_near(obj)
         for signal in signals:
             self.arise_lights[str(signal.openDriveID)] = color
+        approach = self.arise_signals.light_for(self.network, obj.position)
+        if approach is not None:
+            self.arise_signals.hold(approach, color, self.currentTime)
         self.arise_events.append(
             {
                 "step": self.currentTime,
@@ -295,6 +367,9 @@ class OfflineCarlaSimulation(DrivingSimulation):
         )
 
     def arise_light_of(self, obj: Any) -> str | None:
+        approach = self.arise_signals.light_for(self.network, obj.position)
+        if approach is not None:
+            return self.arise_signals.state(approach, self.currentTime).value
         signals = self._signals_near(obj)
         if not signals:
             return None
@@ -302,6 +377,9 @@ class OfflineCarlaSimulation(DrivingSimulation):
 
     def arise_set_signal(self, signal: Any, color: str) -> None:
         self.arise_lights[str(signal.openDriveID)] = color
+        for inter in getattr(self.network, "intersections", ()):
+            if signal in inter.signals:
+                self.arise_signals.hold_intersection(str(inter.uid), color, self.currentTime)
         self.arise_events.append(
             {
                 "step": self.currentTime,

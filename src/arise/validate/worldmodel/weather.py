@@ -1,11 +1,14 @@
 """CARLA 0.9.16 weather checks, so a bad weather param fails offline as it would in CARLA.
 
-The preset and parameter names themselves live in `arise.vocabulary`.
+The value is a preset name or a dict of `carla.WeatherParameters` fields (what Scenic's
+CARLA simulator accepts; `arise.weather.Weather.as_scenic_param()` writes either). The
+preset and parameter names themselves live in `arise.vocabulary`.
 """
 
 from __future__ import annotations
 
 import difflib
+import math
 from typing import Any
 
 from arise.errors import AriseError
@@ -42,5 +45,8 @@ def check_weather(weather: Any) -> None:
                 )
             if not isinstance(value, (int, float)):
                 raise WeatherError(f"weather parameter {key!r} must be a number, got {value!r}")
+            if not math.isfinite(value):
+                # CARLA would hand it to the renderer as it is; the trace could not hold it.
+                raise WeatherError(f"weather parameter {key!r} must be finite, got {value!r}")
     elif weather is not None:
         raise WeatherError(f"weather must be a preset name or a dict, got {type(weather).__name__}")
