@@ -8,6 +8,7 @@ A pattern is words separated by spaces, matched as whole words, case aside:
 - ``left|right``: one of these words;
 - ``the?``: the word, or nothing;
 - ``~``: any one word; ``~?``: any one word, or nothing;
+- ``!left|right`` (last only): not followed by one of these words;
 - ``<side>``: a named slot, one of the words of the lexicon class ``side``; a rule's facts
   can name the slot (``start: adjacent_{side}``) to take the matched word;
 - ``@ego``: a phrase of the lexicon class ``ego`` (several words allowed).
@@ -51,6 +52,9 @@ def compile_pattern(pattern: str, classes: Mapping[str, tuple[str, ...]]) -> re.
     if not items:
         raise RuleError("an empty pattern")
     pieces: list[tuple[str, bool]] = []
+    not_next = ""
+    if items[-1].startswith("!") and len(items) > 1:
+        not_next = f"(?!{_GAP}{_alternatives(items.pop()[1:].split('|'))}(?![\\w']))"
     for item in items:
         optional = item.endswith("?") and len(item) > 1
         core = item[:-1] if optional else item
@@ -81,7 +85,7 @@ def compile_pattern(pattern: str, classes: Mapping[str, tuple[str, ...]]) -> re.
         else:  # an optional last word hangs on the separator before it
             body = body.removesuffix(_GAP) + f"(?:{_GAP}{piece})?"
     try:
-        return re.compile(rf"(?<![\w']){body}(?![\w'])", re.I)
+        return re.compile(rf"(?<![\w']){body}(?![\w']){not_next}", re.I)
     except re.error as error:  # a slot named twice, ...
         raise RuleError(f"pattern {pattern!r}: {error}") from error
 
