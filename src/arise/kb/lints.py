@@ -204,7 +204,9 @@ def _weather(snippet: str) -> list[str]:
         check_weather(value)
     except WeatherError as error:
         return [str(error)]
-    return []
+    from arise.kb.weather import weather_problems
+
+    return weather_problems(snippet)
 
 
 def lint_entry(entry: Entry) -> list[LintProblem]:

@@ -9,6 +9,7 @@ from pathlib import Path
 
 from arise.present.files import write_bytes_atomic, write_text_atomic
 from arise.present.source import TraceSource, map_file
+from arise.present.weather import describe_run_weather
 from arise.render.budget import bounded
 from arise.render.gif import encode_gif
 from arise.render.html import replay_html
@@ -35,13 +36,13 @@ class ReplayFiles:
 
 def scene_for(source: TraceSource, map_dir: str | None = None) -> Scene:
     """The drawable scene of a trace, with the outline of the map it ran on, within the
-    drawing budget (`arise.render.budget`: a bounded number of agents and poses)."""
+    drawing budget (`arise.render.budget`: a bounded number of agents and poses); its
+    title says the weather it ran in."""
     network = load_network(map_file(source.map, map_dir)) if source.map is not None else None
     simulation = source.simulation
+    title = f"{source.title}; {describe_run_weather(simulation.params.get('weather'))}"
     return bounded(
-        scene_of(
-            simulation.agents, simulation.collisions, simulation.timestep, source.title, network
-        )
+        scene_of(simulation.agents, simulation.collisions, simulation.timestep, title, network)
     )
 
 

@@ -4,7 +4,9 @@ references, from a validated trace.
 Each agent becomes one entity (class, bounding box, CARLA blueprint), placed at its first
 world position with its first speed, and follows one timed trajectory of its trace (its
 vertices: `trajectory.simplify`). `EgoMode.FREE` leaves the ego to the system under test.
-The weather preset becomes the environment, and the scenario stops when the trace ends.
+The weather as it ran (a preset, or its parameters: fog as `Fog visualRange`, the sun from
+its altitude and azimuth; `present.weather`) becomes the environment, and the scenario
+stops when the trace ends.
 """
 
 from __future__ import annotations
@@ -112,7 +114,7 @@ def _environment(xosc: Any, values: WeatherValues) -> Any:
         wind=xosc.Wind(0, values.wind_m_s),
     )
     return xosc.Environment(
-        values.preset,
+        values.name,
         xosc.TimeOfDay(False, 2026, 6, 21, values.hour, 0, 0),
         weather,
         xosc.RoadCondition(values.friction_scale),
