@@ -487,82 +487,14 @@ def moves(text: str, start: int, end: int) -> bool:
     return rulebook().first(Fact.MOVING, text, start, end) is not None
 
 
-# The ego held still for the scene ("stopped at a red light", "waits at the lights",
-# "stopped in traffic"); stopping in reaction ("the ego stops short") is not this.
-_EGO_HELD = re.compile(
-    r"\b(?:stopped|waits|waiting|sitting|sits|idling|halted|queued|queuing|stands|standing)"
-    r"\s+(?:at|in|behind)\s+(?:(?:a|an|the)\b|traffic\b)|"
-    r"\b(?:is|was|sits|sat|remains|remained|stands|stood)\s+(?:stationary|at a standstill)\b",
-    re.I,
-)
-
-
-# The ego itself comes up the on-ramp ("the ego merges from the on-ramp onto the freeway").
-_ON_RAMP = re.compile(
-    r"\b(?:merg\w*|enter\w*|join\w*|accelerat\w*|driv\w*|travel\w*|com\w*|is|was)\b"
-    r"(?: [\w-]+){0,4}? (?:from|on|up|along|down|via|in) (?:the |an |a )?(?:on-?ramp|entry ramp|"
-    r"entrance ramp|ramp|slip road|acceleration lane)\b",
-    re.I,
-)
-
-
 def read_ego_on_ramp(reading: Reading) -> None:
     """Whether the ego is the one coming up the on-ramp, from words whose subject it is."""
-    for match in _ON_RAMP.finditer(reading.cast.text):
-        if _subject(reading.cast, match.start()) == "ego":
+    for hit in rulebook().hits(Fact.EGO_ON_RAMP, reading.cast.text):
+        if _subject(reading.cast, hit.start) == "ego":
             reading.facts["ego_on_ramp"] = GroundedFact(
-                name="ego_on_ramp", value="true", source=FactSource.TEXT, quote=match.group(0)
+                name="ego_on_ramp", value="true", source=FactSource.TEXT, quote=hit.quote
             )
             return
-
-
-# What the ego does besides driving its route, in words whose subject is the ego; the
-# first that matches wins, in this order.
-_EGO_PLANS: tuple[tuple[EgoPlan, re.Pattern[str]], ...] = (
-    (
-        EgoPlan.PULL_OVER,
-        re.compile(
-            r"\bpull\w* over\b|\bpull\w* (?:in )?to the (?:kerb|curb|side of the road|shoulder)\b",
-            re.I,
-        ),
-    ),
-    (
-        EgoPlan.BYPASS,
-        re.compile(
-            r"\bbypass\w*|\b(?:go\w*|driv\w*|steer\w*|pass\w*|get\w*) (?:\w+ ){0,3}?(?:a)?round\b"
-            r"[^.;]{0,60}?\b(?:opposite|oncoming) lane|\b(?:us\w*|through) the (?:opposite|"
-            r"oncoming) lane"
-            # "pulls into the oncoming lane to pass": a purpose, so a drift is not a bypass
-            r"|\b\w+ (?:out )?into the (?:opposite|oncoming) lane\b[^.;]{0,15}?\bto "
-            r"(?:pass|overtake|get (?:a)?round|go (?:a)?round)\b",
-            re.I,
-        ),
-    ),
-    (
-        EgoPlan.CHANGE_AND_RETURN,
-        re.compile(
-            r"\b(?:returns?|returning|goes back|moves back|pulls back|changes back|cuts back)\b"
-            r"[^.;]{0,30}?\b(?:lane|original|own)",
-            re.I,
-        ),
-    ),
-    (
-        EgoPlan.STOP_THEN_GO,
-        re.compile(
-            r"\bstops?\b[^.;]{0,50}?\b(?:then|and then|before)\s+(?:goes|going|proceeds?|"
-            r"proceeding|drives? on|moves? off|pulls? away|continues?|sets? off)\b",
-            re.I,
-        ),
-    ),
-    (
-        EgoPlan.YIELD_THEN_GO,
-        re.compile(
-            r"\b(?:yields?|yielding|gives? way|giving way)\b|\bwaits? (?:for|until)\b[^.;]{0,40}?"
-            r"\b(?:clear|gap|pass\w*|oncoming|cross(?:ing)? traffic)\b",
-            re.I,
-        ),
-    ),
-)
 
 
 def _verb_subject(cast: Cast, position: int) -> Mention | str | None:
@@ -580,11 +512,12 @@ def _verb_subject(cast: Cast, position: int) -> Mention | str | None:
 def read_ego_plan(reading: Reading) -> None:
     """What the ego does besides driving its route (pull over, bypass, change lanes and
     back, stop then go, yield then go), from words whose subject is the ego."""
-    for plan, pattern in _EGO_PLANS:
-        for match in pattern.finditer(reading.cast.text):
-            if _verb_subject(reading.cast, match.start()) == "ego":
+    for rule in rulebook().of(Fact.EGO_PLAN):
+        for hit in rule.hits(reading.cast.text):
+            if _verb_subject(reading.cast, hit.start) == "ego":
+                plan = EgoPlan(hit.value)
                 reading.facts["ego_plan"] = GroundedFact(
-                    name="ego_plan", value=plan.value, source=FactSource.TEXT, quote=match.group(0)
+                    name="ego_plan", value=plan.value, source=FactSource.TEXT, quote=hit.quote
                 )
                 if plan is EgoPlan.STOP_THEN_GO:
                     reading.facts.pop("ego_stopped", None)  # it stops, but not for good
@@ -593,10 +526,10 @@ def read_ego_plan(reading: Reading) -> None:
 
 def read_ego_stopped(reading: Reading) -> None:
     """Whether the ego stands still for the whole scene, from words whose subject it is."""
-    for match in _EGO_HELD.finditer(reading.cast.text):
-        if _subject(reading.cast, match.start()) == "ego":
+    for hit in rulebook().hits(Fact.EGO_HELD, reading.cast.text):
+        if _subject(reading.cast, hit.start) == "ego":
             reading.facts["ego_stopped"] = GroundedFact(
-                name="ego_stopped", value="true", source=FactSource.TEXT, quote=match.group(0)
+                name="ego_stopped", value="true", source=FactSource.TEXT, quote=hit.quote
             )
             return
 

@@ -9,6 +9,7 @@ A pattern is words separated by spaces, matched as whole words, case aside:
 - ``the?``: the word, or nothing;
 - ``~``: any one word; ``~?``: any one word, or nothing;
 - ``!left|right`` (last only): not followed by one of these words;
+- ``...``: up to eight words in between, within the sentence;
 - ``<side>``: a named slot, one of the words of the lexicon class ``side``; a rule's facts
   can name the slot (``start: adjacent_{side}``) to take the matched word;
 - ``@ego``: a phrase of the lexicon class ``ego`` (several words allowed).
@@ -28,6 +29,8 @@ from arise.language.errors import RuleError
 #: Between two words: spaces, a hyphen or a comma ("right front" matches "right-front",
 #: "ahead in" matches "ahead, in").
 _GAP = r"(?:\s*,\s*|[\s-]+)"
+#: `...`: up to eight words, within the sentence.
+_SKIP = rf"(?:[\w'-]+{_GAP}){{0,8}}?"
 _WORD = re.compile(r"^[a-z0-9'][a-z0-9'-]*\*?$")
 
 
@@ -58,6 +61,9 @@ def compile_pattern(pattern: str, classes: Mapping[str, tuple[str, ...]]) -> re.
     for item in items:
         optional = item.endswith("?") and len(item) > 1
         core = item[:-1] if optional else item
+        if core == "...":
+            pieces.append((_SKIP, False))
+            continue
         if core == "~":
             piece = r"[\w'-]+"
         elif core.startswith("<") and core.endswith(">"):
@@ -78,7 +84,9 @@ def compile_pattern(pattern: str, classes: Mapping[str, tuple[str, ...]]) -> re.
     body = ""
     for index, (piece, optional) in enumerate(pieces):
         last = index == len(pieces) - 1
-        if not optional:
+        if piece == _SKIP:
+            body += piece  # it takes its own gaps
+        elif not optional:
             body += piece if last else piece + _GAP
         elif not last:
             body += f"(?:{piece}{_GAP})?"

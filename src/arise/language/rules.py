@@ -34,6 +34,7 @@ from pydantic import BaseModel, ConfigDict, Field, ValidationError, field_valida
 from arise.language.errors import RuleError
 from arise.language.lexicon import lexicon
 from arise.language.patterns import compile_pattern
+from arise.vocabulary import EgoPlan, RelativePosition, RoadType, StartDetail
 
 
 class Fact(StrEnum):
@@ -185,6 +186,36 @@ def load_rules(text: str, where: str) -> list[Rule]:
     return rules
 
 
+def _values(fact: Fact) -> frozenset[str] | None:
+    """The values a fact may take (None: free)."""
+    allowed: dict[Fact, frozenset[str]] = {
+        Fact.START: frozenset(RelativePosition),
+        Fact.START_DETAIL: frozenset(StartDetail),
+        Fact.TURN: frozenset({"turn_left", "turn_right", "straight", "change_lane"}),
+        Fact.LANE_SIDE: frozenset({"left", "right"}),
+        Fact.EGO_PLAN: frozenset(EgoPlan),
+        Fact.STATIONARY: frozenset({"true"}),
+        Fact.MOVING: frozenset({"true"}),
+        Fact.EGO_HELD: frozenset({"true"}),
+        Fact.EGO_ON_RAMP: frozenset({"true"}),
+        Fact.ROAD: frozenset({*RoadType, "mid_block"}),
+        Fact.CONTACT: frozenset({"rear", "front", "left", "right"}),
+        Fact.SIGNAL: frozenset({"left", "right"}),
+    }
+    return allowed.get(fact)
+
+
+def _check_value(rule: Rule, where: str) -> None:
+    allowed = _values(rule.fact)
+    if allowed is None:
+        return
+    sides = lexicon().classes["side"]
+    values = {rule.value.format(side=side) for side in sides} if "{" in rule.value else {rule.value}
+    unknown = sorted(values - allowed)
+    if unknown:
+        raise RuleError(f"{where}: rule {rule.id}: {rule.fact} cannot be {unknown[0]!r}")
+
+
 @cache
 def rulebook() -> RuleBook:
     """Every shipped rule, compiled; rule ids are unique."""
@@ -197,6 +228,7 @@ def rulebook() -> RuleBook:
             if rule.id in seen:
                 raise RuleError(f"{name}: rule id {rule.id} is used twice")
             seen.add(rule.id)
+            _check_value(rule, name)
             classes = lexicon().classes
             order = counts.get(rule.fact, 0)
             counts[rule.fact] = order + 1
