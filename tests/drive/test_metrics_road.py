@@ -141,3 +141,22 @@ def test_a_file_that_is_no_map_is_one_clear_error(tmp_path: Path) -> None:
     broken.write_text("<OpenDRIVE><road>")
     with pytest.raises(AriseError, match="cannot read the road network"):
         ScenicRoad.from_map(broken)
+
+
+def test_the_point_queries_agree_with_scenic_s_own(crossroads: ScenicRoad) -> None:
+    from arise.render.outline import load_network
+
+    network = load_network(cached_copy(_shipped("arise_intersection4")))
+    points = [(x * 1.3 - 30.0, y * 1.7 - 20.0) for x in range(47) for y in range(25)]
+    lanes, junctions = 0, 0
+    for x, y in points:
+        lane = network.laneAt((x, y))
+        assert crossroads.lane_at(x, y) == (
+            None if lane is None else LaneRef(road=lane.road.uid, lane=lane.uid)
+        )
+        inside = network.intersectionAt((x, y)) is not None
+        assert crossroads.in_junction(x, y) == inside
+        assert crossroads.on_drivable(x, y) == network.drivableRegion.containsPoint((x, y))
+        lanes += lane is not None
+        junctions += inside
+    assert lanes > 100 and junctions > 50  # the grid covers arms and the junction

@@ -41,12 +41,20 @@ class RoadQueries(Protocol):
 
 
 class ScenicRoad:
-    """`RoadQueries` over a Scenic road network (`scenic.domains.driving.roads.Network`)."""
+    """`RoadQueries` over a Scenic road network (`scenic.domains.driving.roads.Network`).
+
+    Answers as the network's own `laneAt` and `intersectionAt` do (the first element in
+    the network's order that holds the point, else one within its tolerance), from spatial
+    indexes of its own: a few microseconds a point instead of a few hundred.
+    """
 
     def __init__(self, network: Any) -> None:
         import shapely
 
-        self._network = network
+        self._lanes = list(network.lanes)
+        self._lane_tree = shapely.STRtree([lane.polygons for lane in self._lanes])
+        self._junction_tree = shapely.STRtree([j.polygons for j in network.intersections])
+        self._tolerance = float(getattr(network, "tolerance", 0.0) or 0.0)
         self._drivable = network.drivableRegion.polygons
         shapely.prepare(self._drivable)
 
@@ -62,19 +70,29 @@ class ScenicRoad:
         except Exception as error:  # Scenic's parser raises whatever it meets
             raise MetricsError(f"cannot read the road network of {path}: {error}") from error
 
+    def _first(self, tree: Any, x: float, y: float) -> int | None:
+        import shapely
+
+        point = shapely.Point(x, y)
+        found = tree.query(point, predicate="intersects")
+        if not len(found) and self._tolerance > 0:
+            found = tree.query(point, predicate="dwithin", distance=self._tolerance)
+        return int(found.min()) if len(found) else None
+
     def on_drivable(self, x: float, y: float) -> bool:
         import shapely
 
         return bool(shapely.intersects_xy(self._drivable, x, y))
 
     def lane_at(self, x: float, y: float) -> LaneRef | None:
-        lane = self._network.laneAt((x, y))
-        if lane is None:
+        index = self._first(self._lane_tree, x, y)
+        if index is None:
             return None
+        lane = self._lanes[index]
         return LaneRef(road=str(lane.road.uid), lane=str(lane.uid))
 
     def in_junction(self, x: float, y: float) -> bool:
-        return self._network.intersectionAt((x, y)) is not None
+        return self._first(self._junction_tree, x, y) is not None
 
 
 #: The ego's centre must stay in a new lane this long before the move counts, so a centre
