@@ -15,8 +15,8 @@ Where the extraction reads conditions from words (the lead's language rules), it
 **Visibility** is one model both ways (`visual_range_m`, `fog_density_for`): the visual
 range is the clear stretch before the fog starts plus an exponential in the density,
 ``fog_distance + 100 km * exp(-fog_density / 12.33)``; the scale makes density 100 a 30 m
-range. CARLA's own presets come out at 57-85 km by day (density 2-7), 7.7 km at night (60)
-and 31 m in HardRainNight (100). `fog_falloff` only shapes the fog's height, so the model,
+range. CARLA's own presets come out at 57-85 km by day (density 2-7), 770-850 m at night
+(60: CARLA darkens its nights with fog) and 31 m in HardRainNight (100). `fog_falloff` only shapes the fog's height, so the model,
 which looks along the road, ignores it. Each condition targets a range from the usual
 definitions and gets the density the model gives for it, with the fog starting at the
 camera (`fog_distance` 0):

@@ -9,7 +9,8 @@ the trace with truth written by hand before anything ran (`devsets/*.jsonl`, see
 Every fact is read from the trace the validator recorded: classes (from the blueprint when
 it names a CARLA category, else the Scenic class), start positions and headings in the ego's
 initial frame, how each agent moved, junction steps and lane changes from the road network,
-the closest approach to the ego, the weather parameter; plus the features of the map it ran
+the closest approach to the ego, the weather parameter (a preset, or CARLA parameters named
+by their closest preset: `_weather_verdict`); plus the features of the map it ran
 on when the caller knows them. Each labeled fact gets a `Verdict` (expected, observed,
 match); `match` is None when the text does not state the fact or the trace cannot tell, and
 such facts do not count. The score is matched / scored.
@@ -53,6 +54,7 @@ from arise.vocabulary import (
     EgoManeuver,
     Side,
 )
+from arise.weather import Weather, WeatherValueError
 
 #: Closer than this (metres between footprints), or touching, is "came close".
 CLOSE_METRES = 3.0
@@ -60,6 +62,8 @@ CLOSE_METRES = 3.0
 PARALLEL_DEGREES = 45.0
 #: Assignments of trace agents to labeled actors tried per class before taking the best.
 MAX_ASSIGNMENTS = 5040
+#: How much of an unreadable weather text a verdict shows.
+_SHOWN = 80
 
 DEVSET_DIR = Path(__file__).resolve().parent / "devsets"
 #: Classes a label may name: road users and props of CARLA's Scenic model.
@@ -819,18 +823,26 @@ def _road_verdict(
 
 
 def _weather_verdict(expected: str | None, facts: SimulationFacts) -> Verdict:
+    """A trace's weather is a preset's name or the parameter dict the script set (fog,
+    a low sun); either is read into a `Weather` and named by its closest preset by sky
+    and light (`Weather.closest_preset`), which is compared with the label by sky and time
+    of day: fog over CloudyNoon is CloudyNoon, so a fog run matches the label "CloudyNoon"
+    that the labelling rules give fog, and dusk or glare match a Sunset. The labels name
+    presets only, so the visibility itself is not scored. Unstated weather must be exactly
+    the neutral preset: fog or a low sun nobody asked for does not match."""
     seen = facts.params.get("weather")
-    readable = seen is not None and not seen.startswith("{")
     label = expected or f"{DEFAULT_WEATHER} (not stated)"
-    if not readable:
-        return Verdict(FactKind.WEATHER, "", label, seen or "unset", None)
-    assert seen is not None
-    match = (
-        seen == DEFAULT_WEATHER
-        if expected is None
-        else _weather_kind(seen) == _weather_kind(expected)
-    )
-    return Verdict(FactKind.WEATHER, "", label, seen, match)
+    if seen is None:
+        return Verdict(FactKind.WEATHER, "", label, "unset", None)
+    try:
+        weather = Weather.from_param_text(seen)
+    except WeatherValueError:
+        return Verdict(FactKind.WEATHER, "", label, seen[:_SHOWN], None)
+    if expected is None:
+        match = weather.same_as(Weather.preset_only(DEFAULT_WEATHER))
+    else:
+        match = _weather_kind(weather.closest_preset()) == _weather_kind(expected)
+    return Verdict(FactKind.WEATHER, "", label, weather.describe(), match)
 
 
 def _object_verdict(name: str, present: list[str], features: frozenset[str] | None) -> Verdict:
