@@ -105,9 +105,10 @@ def _overall(members: Sequence[DriveRecord], fallback: float | None) -> float | 
         )
     }
     timeout = mean([m.timeout_s for m in members])
-    if timeout is None or any(value is None for value in means.values()):
+    known = {name: value for name, value in means.items() if value is not None}
+    if timeout is None or len(known) < len(means):
         return fallback
-    return float(overall_score(**means, timeout_s=timeout))
+    return float(overall_score(**known, timeout_s=timeout))
 
 
 def table_rows(records: Sequence[DriveRecord]) -> list[Row]:

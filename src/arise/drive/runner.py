@@ -144,7 +144,7 @@ def run_local(tasks: Sequence[DriveTask], config: DriveConfig, out: Path) -> Ite
     if not tasks:
         return
     workers = max(1, config.workers)
-    with WorkerPool(size=workers) as pool:
+    with WorkerPool(size=workers, agent=config.agent) as pool:
         if workers == 1:
             for task in tasks:
                 yield drive_one(task, config, pool, out)
@@ -165,7 +165,7 @@ class _RayActor:
     def __init__(self, config_json: str, out: str):
         self.config = DriveConfig(**json.loads(config_json))
         self.out = Path(out)
-        self.pool = WorkerPool(size=1)
+        self.pool = WorkerPool(size=1, agent=self.config.agent)
 
     def run(self, task_json: str) -> str:
         task = DriveTask.model_validate_json(task_json)

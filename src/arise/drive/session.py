@@ -124,7 +124,7 @@ def scenarios_for(request: DriveRequest, emit: OnDriveEvent) -> Scenarios:
 
 def drive(request: DriveRequest, on_event: OnDriveEvent | None = None) -> DriveSummary:
     """Drive every scenario of the request's source with its agent (runs the database does
-    not hold yet), then write report.md and runs.csv in `out`. Raises AgentNameError,
+    not hold yet), then write report.md and runs.csv in `out`. Raises AgentError,
     DriveSourceError or ExecutorUnavailable before any run; Ctrl-C raises Interrupted
     with every finished run saved."""
     emit = on_event or (lambda event: None)

@@ -17,6 +17,7 @@ from rich.progress import (
 )
 
 from arise import terminal
+from arise.drive.agent_names import resolve_agent
 from arise.evaluate.benchmark import (
     BenchEvent,
     BenchPlanned,
@@ -58,6 +59,8 @@ Examples:
   arise bench prompts.jsonl --executor ray --workers 8
 
   arise bench prompts.jsonl --no-semantic-gate   # measure without the semantic gate
+
+  arise bench prompts.jsonl --agent idm   # also drive every executed script (arise drive)
 """
 
 REPORT_HELP = """Write the report of a benchmark database (Markdown, CSV and PNG plots).
@@ -131,6 +134,15 @@ def bench_command(
         ),
     ] = None,
     judge_model: Annotated[str | None, typer.Option(help="Model of the judge.")] = None,
+    agent: Annotated[
+        str | None,
+        typer.Option(
+            help="Also drive every executed script with this driving agent (scripted, idm, "
+            "cautious, blind, an `arise.agents` entry point or path/to/agent.py:ClassName) "
+            "and add SafeBench's metrics to the report, as `arise drive`. Runs executed "
+            "earlier are driven too, without generating again."
+        ),
+    ] = None,
     semantic_gate: Annotated[
         bool,
         typer.Option(
@@ -151,6 +163,7 @@ def bench_command(
     ] = False,
 ) -> None:
     check_executor(executor)  # before the prompts are read: ExecutorUnavailable, exit 2
+    resolved = resolve_agent(agent) if agent is not None else None  # AgentNameError, exit 2
     items = read_prompts(prompts)  # PromptFileError: one line, exit 2
     base = GenerateOptions(
         provider=provider,
@@ -174,6 +187,7 @@ def bench_command(
         judge_provider=judge_provider,
         judge_model=judge_model,
         ray_address=ray_address,
+        agent=resolved,
     )
     with _BenchPrinter() as printer:
         summary = benchmark(config, out, printer.on_event)  # Ctrl-C: Interrupted, exit 130

@@ -101,6 +101,9 @@ class RunRecord:
     # "not_reached") and the seconds of attempts made only because of it.
     gate: str = "off"
     gate_seconds: float = 0.0
+    # The executed script driven by `--agent` (an `arise.drive.records.DriveRecord` as JSON:
+    # its status, SafeBench's metrics and its collision replay), None when not driven.
+    driving: dict[str, Any] | None = None
 
     def __post_init__(self) -> None:
         self.status = RunStatus(self.status)  # also when read as text

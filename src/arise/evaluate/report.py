@@ -141,6 +141,9 @@ def table_csv(runs: Sequence[RunRecord]) -> str:
 
 
 def runs_csv(runs: Sequence[RunRecord]) -> str:
+    from arise.evaluate.driving import csv_cells, csv_columns
+
+    driving = csv_columns(runs)
     buffer = io.StringIO()
     writer = csv.writer(buffer)
     writer.writerow(
@@ -165,6 +168,7 @@ def runs_csv(runs: Sequence[RunRecord]) -> str:
             "min_ttc",
             "route_completion",
             "message",
+            *driving,
         ]
     )
     for r in runs:
@@ -191,6 +195,7 @@ def runs_csv(runs: Sequence[RunRecord]) -> str:
                 crit.get("min_ttc"),
                 crit.get("route_completion"),
                 (r.message or "")[:200],
+                *csv_cells(r, driving),
             ]
         )
     return buffer.getvalue()
@@ -243,6 +248,8 @@ def _settings(meta: dict[str, object]) -> str:
 
 
 def markdown(runs: Sequence[RunRecord], title: str, meta: dict[str, object]) -> str:
+    from arise.evaluate.driving import markdown_section as driving_section
+
     statuses = Counter(r.status for r in runs)
     parts = [
         f"# {title}",
@@ -301,6 +308,7 @@ def markdown(runs: Sequence[RunRecord], title: str, meta: dict[str, object]) -> 
         "",
         _markdown_table(runs, CRITICALITY_METRICS),
         "",
+        *driving_section(runs),
         "## Failures and repairs",
         "",
         _failure_kinds(runs),

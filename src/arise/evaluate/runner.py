@@ -50,6 +50,9 @@ class BenchConfig:
     judge_provider: str | None = None
     judge_model: str | None = None
     ray_address: str | None = None
+    # A driving agent (`arise drive --agent`'s names, resolved): every executed script is
+    # also driven by it and the run gets SafeBench's metrics.
+    agent: str | None = None
 
 
 def plan(config: BenchConfig) -> list[BenchTask]:
@@ -144,9 +147,11 @@ class TaskRunner:
         judge: bool = False,
         judge_provider: str | None = None,
         judge_model: str | None = None,
+        agent: str | None = None,
     ):
         self.base = base
         self.out_root = out_root
+        self.agent = agent
         self.judging = judge
         self.judge_provider = judge_provider
         self.judge_model = judge_model
@@ -184,7 +189,17 @@ class TaskRunner:
             record.judge = judge_run(
                 self.judge_llm(generator), task, out_dir, generator.options.seed
             )
+        if self.agent and generation.ok:
+            record.driving = self.drive(record)
         return record
+
+    def drive(self, record: RunRecord) -> dict[str, Any] | None:
+        """The run's executed script driven by the agent (the run's seed): its DriveRecord."""
+        from arise.evaluate.driving import drive_run
+
+        assert self.agent is not None
+        generator = self.generator_for(record.task)
+        return drive_run(record, self.agent, generator.options, generator.pool)
 
     def judge(self, record: RunRecord) -> dict[str, Any]:
         """Judge a run finished earlier (a benchmark first run without --judge)."""
@@ -230,7 +245,12 @@ def run_local(
 ) -> Iterator[RunRecord]:
     if config.workers <= 1:
         runner = TaskRunner(
-            config.base, out_root, config.judge, config.judge_provider, config.judge_model
+            config.base,
+            out_root,
+            config.judge,
+            config.judge_provider,
+            config.judge_model,
+            config.agent,
         )
         try:
             for task in tasks:
@@ -252,6 +272,7 @@ def run_local(
             config.judge,
             config.judge_provider,
             config.judge_model,
+            config.agent,
         ),
     ) as pool:
         futures = [pool.submit(_run_in_process, json.dumps(task.__dict__)) for task in tasks]
@@ -263,7 +284,12 @@ _PROCESS_RUNNER: TaskRunner | None = None
 
 
 def _init_process(
-    base_json: str, out_root: str, judge: bool, judge_provider: str | None, judge_model: str | None
+    base_json: str,
+    out_root: str,
+    judge: bool,
+    judge_provider: str | None,
+    judge_model: str | None,
+    agent: str | None = None,
 ) -> None:
     global _PROCESS_RUNNER
     _PROCESS_RUNNER = TaskRunner(
@@ -272,6 +298,7 @@ def _init_process(
         judge,
         judge_provider,
         judge_model,
+        agent,
     )
 
 
@@ -290,6 +317,7 @@ class _RayActor:
         judge: bool,
         judge_provider: str | None,
         judge_model: str | None,
+        agent: str | None = None,
     ):
         self.runner = TaskRunner(
             GenerateOptions.model_validate_json(base_json),
@@ -297,6 +325,7 @@ class _RayActor:
             judge,
             judge_provider,
             judge_model,
+            agent,
         )
 
     def run(self, task_json: str) -> dict[str, Any]:
@@ -329,6 +358,7 @@ def run_ray(tasks: Sequence[BenchTask], config: BenchConfig, out_root: Path) -> 
                 config.judge,
                 config.judge_provider,
                 config.judge_model,
+                config.agent,
             )
             for _ in range(max(1, config.workers))
         ]
@@ -357,6 +387,7 @@ def run_bench(
         temperatures=config.temperatures,
         runs=config.runs,
         prompts=len(config.prompts),
+        **({"agent": config.agent} if config.agent else {}),
     )
     tasks = pending(config, store)
     executor = run_ray if config.executor == "ray" else run_local
@@ -368,7 +399,41 @@ def run_bench(
             on_record(record)
     if config.judge:
         judge_missing(config, store, out_root, on_record)
+    if config.agent:
+        drive_missing(config, store, out_root, on_record)
     return finished
+
+
+def undriven(config: BenchConfig, store: BenchStore) -> list[RunRecord]:
+    """Executed runs of the plan not yet driven by the config's agent."""
+    planned = {task.key for task in plan(config)}
+    return [
+        r
+        for r in store.runs()
+        if r.ok
+        and r.task.key in planned
+        and (r.driving or {}).get("task", {}).get("agent") != config.agent
+    ]
+
+
+def drive_missing(
+    config: BenchConfig, store: BenchStore, out_root: Path, on_driven: OnRecord | None = None
+) -> int:
+    """Drive executed runs that the agent has not driven yet (a benchmark first run
+    without --agent, or with another one), in this process; each is saved at once."""
+    todo = undriven(config, store)
+    if not todo:
+        return 0
+    runner = TaskRunner(config.base, out_root, agent=config.agent)
+    try:
+        for record in todo:
+            record.driving = runner.drive(record)
+            store.save(record)
+            if on_driven:
+                on_driven(record)
+    finally:
+        runner.close()
+    return len(todo)
 
 
 def unjudged(config: BenchConfig, store: BenchStore) -> list[RunRecord]:
