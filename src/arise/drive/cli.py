@@ -34,10 +34,11 @@ from arise.llm.cli_options import ModelOption, ProviderOption, ReplayOption
 
 console = terminal.console()
 
-DRIVE_HELP = """Drive every scenario of SOURCE with a driving agent in the ego's seat and
-measure it with SafeBench's metrics (collision rate, red lights and stop signs run,
-out-of-road distance, route following and completion, time, comfort, lane invasions,
-overall score, min TTC; docs/agents.md).
+DRIVE_HELP = """Put a driving agent in the ego's seat of every scenario and measure it.
+
+The metrics are SafeBench's (collision rate, red lights and stop signs run, out-of-road
+distance, route following and completion, time spent, acceleration, yaw velocity, lane
+invasions, overall score) and the smallest time to collision; docs/agents.md.
 
 SOURCE is a .scenic script, a folder of scripts (walked below; a sub-folder's name is the
 category of the scripts in it), a run folder of `arise generate`, or a prompt file
