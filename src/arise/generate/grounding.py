@@ -25,12 +25,10 @@ from arise.generate.quotes import quote_in
 from arise.generate.readers import (
     Reading,
     adversary_type_of,
-    is_vehicle,
     read_description,
     words_of,
 )
 from arise.generate.spec import ExtractionAnswer, Requirement, RequirementKind, ScenarioSpec
-from arise.generate.weather_words import first_match
 from arise.vocabulary import (
     ActorClass,
     AdversaryManeuver,
@@ -45,22 +43,6 @@ from arise.vocabulary import (
 
 # -- the grounded spec ----------------------------------------------------------------------
 
-_ROAD_WORDS: tuple[tuple[RoadType, str], ...] = (
-    # An on-ramp joining the road (a merge is also a highway, so it is read first).
-    (
-        RoadType.MERGE,
-        r"on-?ramps?|entry ramp|entrance ramp|slip road|acceleration lane|merging lane|"
-        r"(?:joins?|joining|enter\w*) the (?:highway|motorway|freeway|expressway|interstate) "
-        r"from",
-    ),
-    (RoadType.HIGHWAY, r"highway|motorway|freeway|expressway|interstate"),
-    (RoadType.T_JUNCTION, r"t-junction|t junction|t-intersection|t intersection|side road"),
-    (
-        RoadType.INTERSECTION,
-        r"intersection|junction|crossroads|all-way stop|four-way stop|roundabout",
-    ),
-    (RoadType.STRAIGHT, r"straight (?:road|street|stretch)|road|street"),
-)
 # The evidence a requirement of each kind needs in the text; the match is its quote.
 _REQUIREMENT_WORDS: dict[RequirementKind, str] = {
     RequirementKind.VISIBLE_AT_START: r"visible|in (?:plain |clear )?(?:view|sight)|"
@@ -123,45 +105,6 @@ def _model_fact(name: str, value: str, description: str, quote: str) -> Grounded
     if quote_in(description, quote):
         return _fact(name, value, FactSource.MODEL, quote.strip())
     return _fact(name, value, FactSource.GUESS)
-
-
-def _road(
-    description: str, answer: ExtractionAnswer, facts: dict[str, GroundedFact]
-) -> GroundedFact:
-    found = first_match([(road.value, pattern) for road, pattern in _ROAD_WORDS], description)
-    if found is not None and found[0] != RoadType.STRAIGHT.value:
-        return _fact("road_type", found[0], FactSource.TEXT, found[1])
-    ego = facts.get("ego_maneuver")
-    if ego is not None and ego.value in (EgoManeuver.TURN_LEFT, EgoManeuver.TURN_RIGHT):
-        return _fact("road_type", RoadType.INTERSECTION.value, FactSource.TEXT, ego.quote)
-    turn = facts.get("adversary_maneuver")
-    if turn is not None and turn.value in (
-        AdversaryManeuver.TURN_LEFT,
-        AdversaryManeuver.TURN_RIGHT,
-    ):
-        return _fact("road_type", RoadType.INTERSECTION.value, FactSource.TEXT, turn.quote)
-    position = facts.get("spawn_position")
-    adversary = facts.get("adversary_class")
-    if (
-        position is not None
-        and position.source is FactSource.TEXT
-        and position.value in _CROSSING_SIDES
-        and adversary is not None
-        and is_vehicle(adversary.value)
-    ):  # a vehicle cannot come from the side on an open road
-        return _fact("road_type", RoadType.INTERSECTION.value, FactSource.TEXT, position.quote)
-    signal = re.search(
-        r"\b(?:red light|traffic lights?|signali[sz]ed|signals?\b(?! (?:left|right))|"
-        r"stop sign|green light)\b",
-        description,
-        re.I,
-    )
-    if signal is not None:
-        return _fact("road_type", RoadType.INTERSECTION.value, FactSource.TEXT, signal.group(0))
-    if found is not None:
-        return _fact("road_type", found[0], FactSource.TEXT, found[1])
-    # Unstated: an ordinary road, never the model's guess of a highway or a junction.
-    return _fact("road_type", RoadType.STRAIGHT.value, FactSource.DEFAULT)
 
 
 def _requirements(
@@ -242,7 +185,9 @@ def ground(description: str, answer: ExtractionAnswer) -> Grounded:
         facts["adversary_maneuver"] = _fact(
             "adversary_maneuver", AdversaryManeuver.UNSTATED.value, FactSource.DEFAULT
         )
-    facts["road_type"] = _road(description, answer, facts)
+    if "road_type" not in facts:
+        # Unstated: an ordinary road, never the model's guess of a highway or a junction.
+        facts["road_type"] = _fact("road_type", RoadType.STRAIGHT.value, FactSource.DEFAULT)
     participants = _participants(reading)
     dropped = [
         p

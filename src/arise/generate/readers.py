@@ -28,6 +28,7 @@ from arise.vocabulary import (
     EgoManeuver,
     EgoPlan,
     RelativePosition,
+    RoadType,
     StartDetail,
 )
 
@@ -618,7 +619,57 @@ def read_description(description: str, adversary_quote: str | None = None) -> Re
     read_ego_stopped(reading)
     read_ego_plan(reading)
     read_ego_on_ramp(reading)
+    read_road(reading)
     return reading
+
+
+_SIGNAL_WORDS = re.compile(
+    r"\b(?:red light|traffic lights?|signali[sz]ed|signals?\b(?! (?:left|right))|"
+    r"stop sign|green light)\b",
+    re.I,
+)
+
+
+def read_road(reading: Reading) -> None:
+    """The road type: a mid-block location is an ordinary road; else the road words in the
+    rules' order, where a plain road or street gives way to a turn (a junction), a vehicle
+    crossing from the side, or traffic-control words."""
+    text = reading.cast.text
+    facts = reading.facts
+    found = rulebook().by_order(Fact.ROAD, text)
+
+    def told(value: str, quote: str | None) -> None:
+        facts["road_type"] = GroundedFact(
+            name="road_type", value=value, source=FactSource.TEXT, quote=quote
+        )
+
+    if found is not None and found.value == "mid_block":
+        return told(RoadType.STRAIGHT.value, found.quote)
+    if found is not None and found.value != RoadType.STRAIGHT.value:
+        return told(found.value, found.quote)
+    for name, kinds in (
+        ("ego_maneuver", (EgoManeuver.TURN_LEFT, EgoManeuver.TURN_RIGHT)),
+        ("adversary_maneuver", (AdversaryManeuver.TURN_LEFT, AdversaryManeuver.TURN_RIGHT)),
+    ):
+        turn = facts.get(name)
+        if turn is not None and turn.value in kinds:
+            return told(RoadType.INTERSECTION.value, turn.quote)
+    position = facts.get("spawn_position")
+    adversary = reading.adversary
+    if (
+        position is not None
+        and position.value
+        in (RelativePosition.CROSSING_FROM_LEFT, RelativePosition.CROSSING_FROM_RIGHT)
+        and adversary is not None
+        and adversary.cls in VEHICLE_CLASSES
+    ):  # a vehicle cannot come from the side on an open road
+        return told(RoadType.INTERSECTION.value, position.quote)
+    signal = _SIGNAL_WORDS.search(text)
+    if signal is not None:
+        return told(RoadType.INTERSECTION.value, signal.group(0))
+    if found is not None:
+        return told(found.value, found.quote)
+    return None
 
 
 def read_facts(description: str) -> dict[str, dict[str, str]]:
@@ -643,6 +694,7 @@ def read_facts(description: str) -> dict[str, dict[str, str]]:
         "ego_stopped": ("ego", Fact.EGO_HELD.value),
         "ego_on_ramp": ("ego", Fact.EGO_ON_RAMP.value),
         "weather": ("scene", "weather"),
+        "road_type": ("scene", Fact.ROAD.value),
     }
     for name, fact in reading.facts.items():
         if name in names:

@@ -93,7 +93,7 @@ def compile_pattern(pattern: str, classes: Mapping[str, tuple[str, ...]]) -> re.
         else:  # an optional last word hangs on the separator before it
             body = body.removesuffix(_GAP) + f"(?:{_GAP}{piece})?"
     try:
-        return re.compile(rf"(?<![\w']){body}(?![\w']){not_next}", re.I)
+        return re.compile(rf"(?<![\w'-]){body}(?![\w']){not_next}", re.I)
     except re.error as error:  # a slot named twice, ...
         raise RuleError(f"pattern {pattern!r}: {error}") from error
 

@@ -7,15 +7,38 @@ from dataclasses import replace
 
 from arise.language.cast import Cast, Mention, Span, read_cast
 from arise.language.clauses import read_clauses
+from arise.language.rules import Fact, rulebook
+from arise.vocabulary import ActorClass
 
 # A pronoun that opens a clause ("..., it then stops", "He braked").
 _PRONOUN = re.compile(r"(?:\s|then|suddenly|also|and)*\b(it|he|she|they)\b", re.I)
 
 
+#: The class of an actor the words imply without naming it.
+_IMPLIED_CLASS = {
+    "oncoming": ActorClass.CAR,
+    "crossing": ActorClass.CAR,
+    "obstacle": ActorClass.DEBRIS,
+}
+
+
+def _implied(cast: Cast) -> Cast:
+    """A cast that names no road user or object but implies one ("yielding to oncoming
+    traffic", "an obstruction in its lane") gets that one, on the words that imply it."""
+    if cast.others:
+        return cast
+    hit = rulebook().first(Fact.IMPLIED, cast.text)
+    if hit is None:
+        return cast
+    span = Span(hit.start, hit.end)
+    mention = Mention(_IMPLIED_CLASS[hit.value], 1, hit.start, hit.end, hit.quote, (span,))
+    return replace(cast, others=(mention,))
+
+
 def parse(text: str) -> Cast:
     """The cast and clauses of `text`; a pronoun opening a clause joins the spans of the
     subject that clause carries on, so the words after it count as that actor's."""
-    cast = read_cast(text)
+    cast = _implied(read_cast(text))
     clauses = read_clauses(cast)
     ego = list(cast.ego)
     others = list(cast.others)

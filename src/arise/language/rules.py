@@ -201,6 +201,7 @@ def _values(fact: Fact) -> frozenset[str] | None:
         Fact.ROAD: frozenset({*RoadType, "mid_block"}),
         Fact.CONTACT: frozenset({"rear", "front", "left", "right"}),
         Fact.SIGNAL: frozenset({"left", "right"}),
+        Fact.IMPLIED: frozenset({"oncoming", "crossing", "obstacle"}),
     }
     return allowed.get(fact)
 
