@@ -34,7 +34,8 @@ EXPORT_HELP = """Export a run as ASAM OpenSCENARIO 1.2: scenario.xosc and the .x
 
 Every agent becomes an entity (class, bounding box, CARLA blueprint) with its initial
 world position and speed and one timed FollowTrajectoryAction from the trace; the weather
-preset becomes the environment and the scenario stops when the trace ends. With
+it ran with (a preset, or its parameters: fog as a visual range, the sun's angles) becomes
+the environment and the scenario stops when the trace ends. With
 `--ego free` the ego keeps its start but no trajectory: the system under test drives it.
 TARGET is a run folder or a .scenic script, as for `arise replay`. See docs/export.md.
 
