@@ -9,11 +9,11 @@ import pytest
 
 from arise.generate.facts import FactSource
 from arise.generate.grounding import ground
-from arise.language.cast import read_cast
 from arise.generate.quotes import find_quote, quote_in
 from arise.generate.readers import read_description
 from arise.generate.spec import ExtractionAnswer
 from arise.generate.weather_words import read_weather
+from arise.language.cast import read_cast
 from arise.vocabulary import AdversaryManeuver, AdversaryType, EgoManeuver, RelativePosition
 
 
@@ -100,7 +100,7 @@ def test_the_ego_is_never_one_of_the_others() -> None:
     ],
 )
 def test_weather_comes_from_weather_words_only(text: str, preset: str, source: FactSource) -> None:
-    fact = read_weather(text)
+    fact = read_weather(text).fact
     assert (fact.value, fact.source) == (preset, source)
 
 

@@ -3,7 +3,7 @@
 The model proposes; the description decides. Each fact the spec carries says where it came
 from (`FactSource`):
 
-- TEXT: a fixed rule read it from the description's words (`readers`, `weather_words`),
+- TEXT: a fixed rule read it from the description's words (`readers`, `weather_words`, the rules of `arise.language`),
   attributed to the actor the words are about;
 - MODEL: the model's answer, kept with a quote that is really in the description;
 - GUESS: the model's answer with no words behind it (kept where something is needed,
@@ -248,6 +248,7 @@ def ground(description: str, answer: ExtractionAnswer) -> Grounded:
         participants=participants,
         actors=read_actors(reading),
         weather=facts["weather"].value,
+        weather_parameters=reading.weather.parameters if reading.weather else None,
         requirements=requirements,
         grounding=list(facts.values()),
     )

@@ -12,7 +12,7 @@ from dataclasses import dataclass, field
 
 from arise.generate.facts import FactSource, GroundedFact
 from arise.generate.quotes import find_quote
-from arise.generate.weather_words import read_weather
+from arise.generate.weather_words import WeatherReading, read_weather
 from arise.language.cast import (
     VEHICLE_CLASSES,
     Cast,
@@ -57,6 +57,7 @@ class Reading:
     adversary: Mention | None = None
     facts: dict[str, GroundedFact] = field(default_factory=dict)
     notes: list[str] = field(default_factory=list)
+    weather: WeatherReading | None = None
 
 
 def words_of(cast: Cast, mention: Mention) -> list[tuple[int, int]]:
@@ -598,7 +599,8 @@ def read_description(description: str, adversary_quote: str | None = None) -> Re
     cast = parse(description)
     reading = Reading(cast=cast)
     reading.adversary = choose_adversary(cast, adversary_quote)
-    reading.facts["weather"] = read_weather(description)
+    reading.weather = read_weather(description)
+    reading.facts["weather"] = reading.weather.fact
     if reading.adversary is not None:
         adversary = reading.adversary
         reading.facts["adversary_class"] = GroundedFact(
@@ -700,6 +702,11 @@ def read_facts(description: str) -> dict[str, dict[str, str]]:
         if name in names:
             who, key = names[name]
             found[who][key] = fact.value
+    if reading.weather is not None:
+        if reading.weather.light is not None:
+            found["scene"][Fact.LIGHT.value] = reading.weather.light.value
+        if reading.weather.parameters is not None:
+            found["scene"][Fact.VISIBILITY.value] = reading.weather.visibility.value
     if reading.adversary is not None:
         adversary = found[reading.adversary.quote]
         adversary["adversary"] = "true"

@@ -27,6 +27,7 @@ from arise.vocabulary import (
     Side,
     StartDetail,
 )
+from arise.weather import Weather
 
 __all__ = [
     "Actor",
@@ -170,6 +171,11 @@ class ScenarioSpec(BaseModel):
         description="the participants as actors (role, class, count, start), in the same order",
     )
     weather: str = Field(default=DEFAULT_WEATHER, description="a CARLA weather preset")
+    weather_parameters: Weather | None = Field(
+        default=None,
+        description="the full weather when the words need more than a preset (fog, dusk, "
+        "glare); `weather` is then its closest preset",
+    )
     requirements: list[Requirement] = Field(default_factory=list)
     adversary_class: ActorClass | None = Field(
         default=None, description="the Scenic class the text names (Van, Bus, ...), if any"

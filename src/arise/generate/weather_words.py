@@ -1,77 +1,85 @@
-"""Weather and light from the description's words: a CARLA preset, or ClearNoon unstated.
+"""Weather, light and visibility from the description's words (rules in
+language/data/rules/weather.yaml): a CARLA preset, and the weather parameters fog, haze,
+smoke, dusk, dawn and glare change; ClearNoon when nothing is said.
 
-Only words about the sky, the road surface and the time of day count ("a dark blue sedan" is
-no night); what the model says about weather is never asked.
+What the model says about weather is never asked.
 """
 
 from __future__ import annotations
 
-import re
-from collections.abc import Sequence
+from dataclasses import dataclass
 
 from arise.generate.facts import FactSource, GroundedFact
+from arise.language.rules import Fact, Hit, rulebook
 from arise.vocabulary import DEFAULT_WEATHER, WEATHER_PRESETS
+from arise.weather import Light, Visibility, Weather, weather_for
 
-_SKY = (
-    (
-        "HardRain",
-        r"heavy rain\w*|hard rain|downpour|pouring rain|torrential rain|"
-        r"thunderstorms?|rainstorms?|storm",
-    ),
-    ("SoftRain", r"light rain|drizzl\w*|soft rain|light showers?|sprinkl\w+|misty rain"),
-    ("MidRain", r"rain\w*|showers"),
-    (
-        "Wet",
-        r"slippery|icy|wet (?:\w+ )?(?:road|roads|street|streets|asphalt|pavement|surface)|puddles?|"
-        r"slick (?:road|street|surface)|road (?:is|was) wet|damp (?:road|street)",
-    ),
-    ("Cloudy", r"cloud\w*|overcast|grey skies?|gray skies?"),
-    (
-        "Clear",
-        r"clear (?:sky|skies|weather|day|conditions)|sunny|sunshine|dry weather|"
-        r"weather (?:is|was) clear|clear and dry",
-    ),
-)
-_TIME = (
-    (
-        "Night",
-        r"night\w*|darkness|after dark|in the dark|midnight|dark(?![\s-]+(?:red|blue|"
-        r"green|grey|gray|colou?red|sedan|suv|car|van|truck|jacket|cloth\w*|coat))",
-    ),
-    ("Sunset", r"sunset|dusk|twilight|sundown|setting sun|low sun|dawn|sunrise|daybreak"),
-    ("Noon", r"daylight|daytime|midday|noon|broad day"),
-)
-_RAIN_NAMES = {
-    "HardRain": "HardRain",
-    "SoftRain": "SoftRain",
-    "MidRain": "MidRainy",
+_TIME_OF_LIGHT = {
+    Light.NIGHT: "Night",
+    Light.DUSK: "Sunset",
+    Light.DAWN: "Sunset",
+    Light.GLARE: "Sunset",
+    Light.DAY: "Noon",
 }
+_RAIN_NAMES = {"HardRain": "HardRain", "SoftRain": "SoftRain", "MidRain": "MidRainy"}
+#: Lights a preset alone cannot show (its sun is moved): they make a parameter dict.
+_LIGHTS_WITH_SUN = frozenset({Light.DUSK, Light.DAWN, Light.GLARE})
 
 
-def first_match(table: Sequence[tuple[str, str]], text: str) -> tuple[str, str] | None:
-    for value, pattern in table:
-        match = re.search(rf"\b(?:{pattern})\b", text, re.I)
-        if match:
-            return value, match.group(0)
-    return None
+@dataclass(frozen=True)
+class WeatherReading:
+    """The preset (the grounded fact) and, when the words need more than a preset, the
+    full weather; plus the visibility and light the words gave."""
+
+    fact: GroundedFact
+    weather: Weather
+    visibility: Visibility
+    light: Light | None
+
+    @property
+    def parameters(self) -> Weather | None:
+        """The weather when it differs from its preset, else None."""
+        return self.weather if self.weather.overrides else None
 
 
-def read_weather(description: str) -> GroundedFact:
-    """The CARLA preset the description's weather and light words name; ClearNoon if none."""
-    sky = first_match(_SKY, description)
-    time = first_match(_TIME, description)
-    if sky is None and time is None:
-        return GroundedFact(name="weather", value=DEFAULT_WEATHER, source=FactSource.DEFAULT)
-    sky_name = sky[0] if sky else "Clear"
-    time_name = time[0] if time else "Noon"
-    if sky_name == "Wet" and re.search(r"\b(?:cloud\w*|overcast)\b", description, re.I):
+def _base_preset(sky: str | None, time: str, cloudy: bool) -> str:
+    sky_name = sky or "Clear"
+    if sky_name == "Wet" and cloudy:
         sky_name = "WetCloudy"
-    candidates = [f"{_RAIN_NAMES.get(sky_name, sky_name)}{time_name}"]
+    candidates = [f"{_RAIN_NAMES.get(sky_name, sky_name)}{time}"]
     if sky_name == "MidRain":
-        candidates += [f"MidRain{time_name}", f"MidRainy{time_name}"]
-    candidates.append(f"HardRain{time_name}" if "Rain" in sky_name else f"Clear{time_name}")
-    preset = next((c for c in candidates if c in WEATHER_PRESETS), DEFAULT_WEATHER)
-    words = [found[1] for found in (sky, time) if found]
-    return GroundedFact(
-        name="weather", value=preset, source=FactSource.TEXT, quote=" ... ".join(words)
+        candidates += [f"MidRain{time}", f"MidRainy{time}"]
+    candidates.append(f"HardRain{time}" if "Rain" in sky_name else f"Clear{time}")
+    return next((c for c in candidates if c in WEATHER_PRESETS), DEFAULT_WEATHER)
+
+
+def read_weather(description: str) -> WeatherReading:
+    """The weather the description's words name; ClearNoon if none."""
+    book = rulebook()
+    sky = book.by_order(Fact.SKY, description)
+    light_hit = book.by_order(Fact.LIGHT, description)
+    seen = book.by_order(Fact.VISIBILITY, description)
+    light = Light(light_hit.value) if light_hit else None
+    visibility = Visibility(seen.value) if seen else Visibility.CLEAR
+    if sky is None and light_hit is None and seen is None:
+        fact = GroundedFact(name="weather", value=DEFAULT_WEATHER, source=FactSource.DEFAULT)
+        return WeatherReading(fact, Weather.preset_only(DEFAULT_WEATHER), visibility, None)
+    cloudy = book.first(Fact.SKY, description) is not None and any(
+        hit.value == "Cloudy" for hit in book.hits(Fact.SKY, description)
     )
+    time = _TIME_OF_LIGHT[light] if light else "Noon"
+    base = _base_preset(sky.value if sky else None, time, cloudy)
+    changes = visibility is not Visibility.CLEAR or light in _LIGHTS_WITH_SUN
+    weather = (
+        weather_for(base, visibility, light if light in _LIGHTS_WITH_SUN else None)
+        if changes
+        else Weather.preset_only(base)
+    )
+    words = [hit.quote for hit in (sky, light_hit, seen) if isinstance(hit, Hit)]
+    fact = GroundedFact(
+        name="weather",
+        value=weather.closest_preset(),
+        source=FactSource.TEXT,
+        quote=" ... ".join(words),
+    )
+    return WeatherReading(fact, weather, visibility, light)
