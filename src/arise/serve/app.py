@@ -12,7 +12,8 @@ Routes (all behind `Guard`):
     GET  /api/runs/{id}             the run's script, attempts, spec, conformity and files
     GET  /runs/{id}/files/{name}    one file of the run's own folder
     GET  /runs/{id}/download.zip    scenario.scenic, .xosc, .xodr, report.json, replay.html
-    POST /api/check                 {"script", "name"?} -> the validator's verdict (+ replay)
+    POST /api/check                 {"script", "name"?, "agent"?} -> the validator's verdict
+                                    (+ replay, + the agent's driving metrics)
     GET  /checks/{id}/files/{name}  a checked script's replay
     GET  /api/health                liveness (and the checks under way), for scripts and tests
 
@@ -49,6 +50,7 @@ from arise.serve.checker import ScriptChecker
 from arise.serve.checks import admit_script
 from arise.serve.choices import REPLAY, ModelChoice, model_choices
 from arise.serve.config import ServeConfig
+from arise.serve.driving import admit_agent, agent_choices
 from arise.serve.errors import BadInput, InputTooLarge, ServeError
 from arise.serve.events import event_json
 from arise.serve.examples import examples
@@ -92,6 +94,8 @@ class GenerateBody(BaseModel):
 class CheckBody(BaseModel):
     script: str
     name: str | None = None
+    # A built-in driving agent in the ego's seat (its metrics come with the verdict).
+    agent: str | None = None
 
 
 def generator_factory(config: ServeConfig, pool: WorkerPool) -> RunnerFactory:
@@ -251,6 +255,7 @@ def create_app(
             "models": [c.as_dict() for c in choices],
             "default": preferred.as_dict() if preferred else None,
             "examples": examples(),
+            "agents": agent_choices(),
             "limits": {
                 "description_chars": config.max_description_chars,
                 "script_bytes": config.max_script_bytes,
@@ -326,11 +331,12 @@ def create_app(
     @app.post("/api/check")
     async def check(body: CheckBody) -> dict[str, Any]:
         text = admit_script(body.script, config.max_script_bytes)
+        agent = admit_agent(body.agent)
         checks: RunStore = state["checks"]
         check_id = new_id()
         folder = checks.folder(check_id, create=True)
         options = config.options
-        result = await checker().check(text, folder, options.map_dir, options.check_timeout)
+        result = await checker().check(text, folder, options.map_dir, options.check_timeout, agent)
         return {**result, "id": check_id, "name": body.name}
 
     @app.get("/checks/{check_id}/files/{name}", include_in_schema=False)

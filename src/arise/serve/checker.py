@@ -156,14 +156,17 @@ class CheckProcess:
         map_dir: str | None,
         timeout: float,
         budget: float,
+        agent: str | None = None,
     ) -> dict[str, Any]:
         """The check's view; raises CheckFailed (the process is still good) or
         CheckStopped (the process must go)."""
-        self._send(Check(text=text, folder=str(folder), map_dir=map_dir, timeout=timeout))
+        self._send(
+            Check(text=text, folder=str(folder), map_dir=map_dir, timeout=timeout, agent=agent)
+        )
         while True:
             match self._receive(budget, "read the script and its result"):
                 case Run(request=asked):
-                    request = held_request(asked, text, map_dir, timeout)
+                    request = held_request(asked, text, map_dir, timeout, agent)
                     self._send(run_on_pool(pool, request, timeout))
                 case Done(view=view):
                     return view
@@ -187,15 +190,18 @@ class CheckProcess:
                 stream.close()
 
 
-def held_request(request: object, text: str, map_dir: str | None, timeout: float) -> dict:
+def held_request(
+    request: object, text: str, map_dir: str | None, timeout: float, agent: str | None = None
+) -> dict:
     """The check process's run request, held to what the server asked for: the same
-    script, and the server's options (a process may only add `require_sandbox`)."""
+    script, and the server's options, its agent included (a process may only add
+    `require_sandbox`)."""
     if not isinstance(request, dict) or request.get("text") != text:
         raise CheckStopped("the check process asked to run another script")
     asked = request.get("options")
     if not isinstance(asked, dict) or not isinstance(request.get("map"), dict):
         raise CheckStopped("the check process sent a malformed run request")
-    options = check_options(map_dir, timeout).model_dump(mode="json")
+    options = check_options(map_dir, timeout, agent).model_dump(mode="json")
     options["require_sandbox"] = bool(options["require_sandbox"] or asked.get("require_sandbox"))
     return {**request, "options": options}
 
@@ -249,7 +255,7 @@ class ScriptChecker:
         return {"running": running, "waiting": max(0, self._admitted - running)}
 
     async def check(
-        self, text: str, folder: Path, map_dir: str | None, timeout: float
+        self, text: str, folder: Path, map_dir: str | None, timeout: float, agent: str | None = None
     ) -> dict[str, Any]:
         """Check `text` in a check process; 503 at once when the queue is full."""
         if self._closed:
@@ -264,20 +270,20 @@ class ScriptChecker:
         self._admitted += 1
         try:
             return await anyio.to_thread.run_sync(
-                self._check_now, text, folder, map_dir, timeout, limiter=self._limiter
+                self._check_now, text, folder, map_dir, timeout, agent, limiter=self._limiter
             )
         finally:
             self._admitted -= 1
 
     def _check_now(
-        self, text: str, folder: Path, map_dir: str | None, timeout: float
+        self, text: str, folder: Path, map_dir: str | None, timeout: float, agent: str | None
     ) -> dict[str, Any]:
         with self._lock:
             self._running += 1
         try:
             process = self._take()
             try:
-                view = process.check(text, folder, self.pool, map_dir, timeout, self.budget)
+                view = process.check(text, folder, self.pool, map_dir, timeout, self.budget, agent)
             except CheckFailed:
                 self._give_back(process)
                 raise

@@ -68,6 +68,7 @@ class Check(_Message):
     folder: str
     map_dir: str | None
     timeout: float
+    agent: str | None = None  # a built-in the server admitted (`serve.driving`)
 
 
 class Ran(_Message):

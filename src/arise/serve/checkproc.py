@@ -107,7 +107,12 @@ def handle(channel: Channel, message: Check) -> Done | Failed:
     pool = cast(WorkerPool, RemotePool(channel))  # check() only calls run()
     try:
         view = check_script(
-            message.text, Path(message.folder), pool, message.map_dir, message.timeout
+            message.text,
+            Path(message.folder),
+            pool,
+            message.map_dir,
+            message.timeout,
+            message.agent,
         )
     except AriseError as error:
         return Failed(error=str(error).splitlines()[0], internal=False)

@@ -21,10 +21,10 @@ SCRIPT_NAME = "scenario.scenic"
 CHECK_TIMEOUT = 60.0
 
 
-def check_options(map_dir: str | None, timeout: float) -> CheckOptions:
+def check_options(map_dir: str | None, timeout: float, agent: str | None = None) -> CheckOptions:
     """What a pasted script is checked with (the server also holds a check's requests
-    to these)."""
-    return CheckOptions(seed=0, map_dir=map_dir, timeout=timeout)
+    to these); `agent` drives the ego (a built-in, `serve.driving.admit_agent`)."""
+    return CheckOptions(seed=0, map_dir=map_dir, timeout=timeout, agent=agent)
 
 
 def admit_script(text: str, max_bytes: int) -> str:
@@ -77,16 +77,23 @@ def check_script(
     pool: WorkerPool,
     map_dir: str | None = None,
     timeout: float = CHECK_TIMEOUT,
+    agent: str | None = None,
 ) -> dict[str, Any]:
-    """Check `text` (saved as folder/scenario.scenic) in the pool; a run adds replay.html.
-    The server calls this in its check process (`checkproc`), never in its own."""
+    """Check `text` (saved as folder/scenario.scenic) in the pool; a run adds replay.html,
+    and with an agent its driving metrics. The server calls this in its check process
+    (`checkproc`), never in its own."""
     folder.mkdir(parents=True, exist_ok=True)
     path = folder / SCRIPT_NAME
     write_text_atomic(path, text)
-    options = check_options(map_dir, timeout)
+    options = check_options(map_dir, timeout, agent)
     result = check(path, options, pool=pool)
     view = result_view(result, text)
     view["replay"] = None
+    view["driving"] = None
+    if result.ok and agent is not None:
+        from arise.serve.driving import driving_view
+
+        view["driving"] = driving_view(result, agent, options.steps)
     if result.ok:
         try:
             source = from_check(path, result, options)

@@ -6,6 +6,7 @@
   var FINISHED = { done: true, failed: true, cancelled: true };
   var info = null;
   var current = null; // the job shown on the right: {id, source}
+  var runScript = null; // the text of the run shown on the right, for "Drive this script"
   var $ = function (id) { return document.getElementById(id); };
 
   function el(tag, className, text) {
@@ -49,7 +50,19 @@
   }
 
   // -- the form ---------------------------------------------------------------------
+  function fillAgents() {
+    Array.prototype.forEach.call(document.querySelectorAll("select.agent-pick"), function (select) {
+      (info.agents || []).forEach(function (agent) {
+        var option = el("option", null, agent.name + ": " + agent.note);
+        option.value = agent.name;
+        select.appendChild(option);
+      });
+    });
+    $("drive-agent").value = "idm";
+  }
+
   function fillForm() {
+    fillAgents();
     var examples = $("example");
     info.examples.forEach(function (example, index) {
       var option = el("option", null, example.title);
@@ -248,6 +261,10 @@
     $("no-replay").hidden = hasReplay;
     frame.src = hasReplay ? base + "/files/replay.html" : "about:blank";
     showScript(view.script);
+    runScript = view.script && !view.script.failed ?
+      view.script.lines.map(function (line) { return line.text; }).join("\n") + "\n" : null;
+    $("drive-form").hidden = !(hasReplay && runScript);
+    $("drive-error").hidden = true;
     showAttempts(view.attempts || []);
     showSpec(view.spec);
     showConformity(view.conformity, view.report);
@@ -350,7 +367,8 @@
       var text = file ? await file.text() : $("script-text").value;
       button.disabled = true;
       button.textContent = "Checking\u2026";
-      var result = await post("/api/check", { script: text, name: name });
+      var agent = $("check-agent").value || null;
+      var result = await post("/api/check", { script: text, name: name, agent: agent });
       showCheck(result);
     } catch (error) {
       showError(box, error);
@@ -358,6 +376,51 @@
       button.disabled = false;
       button.textContent = "Check in the validator";
     }
+  }
+
+  async function driveRun(event) {
+    event.preventDefault();
+    var box = $("drive-error");
+    box.hidden = true;
+    if (!runScript || !current) { return; }
+    var button = $("drive");
+    var name = "job " + current.id;
+    try {
+      button.disabled = true;
+      button.textContent = "Driving\u2026";
+      showCheck(await post("/api/check", { script: runScript, name: name, agent: $("drive-agent").value }));
+    } catch (error) {
+      showError(box, error);
+    } finally {
+      button.disabled = false;
+      button.textContent = "Drive";
+    }
+  }
+
+  function showDriving(result) {
+    var driving = result.driving;
+    var box = $("check-driving");
+    box.hidden = !driving;
+    if (!driving) { return; }
+    $("check-driving-agent").textContent = driving.agent;
+    var verdict = $("check-driving-verdict");
+    verdict.hidden = !!driving.error;
+    verdict.textContent = driving.collision ? "collision" : "no collision";
+    verdict.className = "badge " + (driving.collision ? "failed" : "done");
+    var body = $("check-metrics").tBodies[0];
+    clear(body);
+    driving.metrics.forEach(function (metric) {
+      var row = el("tr");
+      row.dataset.metric = metric.metric;
+      row.appendChild(el("td", null, metric.label));
+      var value = metric.value === null || metric.value === undefined ? "-" :
+        (Number.isInteger(metric.value) ? String(metric.value) : Number(metric.value).toFixed(2));
+      row.appendChild(el("td", "value", value));
+      row.appendChild(el("td", "hint", metric.meaning));
+      body.appendChild(row);
+    });
+    $("check-driving-note").textContent = driving.error ||
+      "One run, seed 0: the mean over many runs is `arise drive` (docs/agents.md has each definition).";
   }
 
   function showCheck(result) {
@@ -380,6 +443,7 @@
     var frame = $("check-replay");
     frame.hidden = !result.replay;
     frame.src = result.replay ? "/checks/" + encodeURIComponent(result.id) + "/files/" + result.replay : "about:blank";
+    showDriving(result);
   }
 
   // -- start ----------------------------------------------------------------------------
@@ -399,6 +463,7 @@
     $("description").addEventListener("input", countChars);
     $("generate-form").addEventListener("submit", submit);
     $("check-form").addEventListener("submit", checkScript);
+    $("drive-form").addEventListener("submit", driveRun);
     $("cancel").addEventListener("click", function () { if (current) { cancel(current.id); } });
     await refreshJobs();
     setInterval(function () { if (!document.hidden) { refreshJobs(); } }, 2000);
