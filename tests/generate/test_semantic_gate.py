@@ -17,15 +17,16 @@ from arise.generate.conformity import (
     actor_counts,
     check_conformity,
     contradictions,
-    participant_allowance,
 )
 from arise.generate.options import GenerateOptions, Mode
 from arise.generate.repair import GatedValidate, repair_loop
 from arise.generate.run import AttemptKind, GateVerdict, RunStatus
-from arise.generate.spec import ScenarioSpec
+from arise.generate.spec import Actor, ScenarioSpec
 from arise.kb.schema import Component
+from arise.language.cast import read_cast
 from arise.sections import section_body
 from arise.validate.types import AgentTrace, CheckResult, SimulationFacts, Stage, TracePoint
+from arise.vocabulary import ActorRole
 from tests.fakes import FakeValidator, ScriptedProvider, failed, passed
 from tests.generate.test_repair_loop import entry, kinds, setup, spawn
 
@@ -149,20 +150,51 @@ def _facts(*others: AgentTrace) -> SimulationFacts:
     )
 
 
+def _actors(participants: list[str]) -> list[Actor]:
+    """The actors the cast reads from each participant's words (the first thing named)."""
+    found = []
+    for words in participants:
+        mention = read_cast(words).others[0]
+        found.append(
+            Actor(
+                role=ActorRole.PARKED,
+                scenic_class=mention.cls,
+                count=mention.count,
+                count_stated=mention.counted,
+                quote=words,
+            )
+        )
+    return found
+
+
 def _found(participants: list[str], *others: AgentTrace) -> set[str]:
-    spec = ScenarioSpec.model_validate({**SPEC, "participants": participants})
+    spec = ScenarioSpec.model_validate(
+        {**SPEC, "participants": participants, "actors": _actors(participants)}
+    )
     return {c.check for c in contradictions(check_conformity(spec, _facts(*others)))}
 
 
-def test_participant_texts_say_how_many_objects_they_stand_for() -> None:
-    assert participant_allowance("a parked car on the right") == 1
-    assert participant_allowance("two parked vans") == 2
-    assert participant_allowance("3 traffic cones") == 3
-    assert participant_allowance("parked cars along the street") is None
-    assert participant_allowance("a pedestrian waiting at the bus stop") == 1
-    assert participant_allowance("several cyclists") is None
+@pytest.mark.parametrize(
+    ("words", "most"),
+    [
+        ("a parked car on the right", 1),
+        ("two parked vans", 2),
+        ("3 traffic cones", 3),
+        ("parked cars along the street", None),
+        ("a pedestrian waiting at the bus stop", 1),
+        ("several cyclists", None),
+    ],
+)
+def test_the_cast_says_how_many_objects_a_participant_stands_for(
+    words: str, most: int | None
+) -> None:
+    assert actor_counts(_actors([words])) == (1, most)
+
+
+def test_actor_counts_add_up_and_a_group_has_no_upper_bound() -> None:
     assert actor_counts([]) == (0, 0)
-    assert actor_counts(["a bus", "parked cars"]) == (2, None)
+    assert actor_counts(_actors(["a bus", "parked cars"])) == (2, None)
+    assert actor_counts(_actors(["a bus", "two cones"])) == (2, 3)
 
 
 def test_extra_actors_nobody_asked_for_are_a_contradiction() -> None:

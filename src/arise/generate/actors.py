@@ -110,6 +110,7 @@ def read_actors(reading: Reading) -> list[Actor]:
                 role=role,
                 scenic_class=mention.cls,
                 count=mention.count,
+                count_stated=mention.counted,
                 start=start,
                 stationary=stationary or mention.is_prop,
                 quote=mention.quote,

@@ -13,12 +13,10 @@ evaluation reads the same check.
 from __future__ import annotations
 
 import math
-import re
 from dataclasses import dataclass, field
 from typing import Any
 
 from arise.generate.spec import Actor, ScenarioSpec
-from arise.language.cast import read_cast
 from arise.validate.types import (
     AgentTrace,
     CheckResult,
@@ -50,43 +48,6 @@ GATED_CHECKS = {
     "extra_actors": "MISC",
     "weather": "WEATHER",
 }
-# Words that make one participant stand for several objects ("parked cars", "two vans").
-_NUMBERS = {
-    "two": 2,
-    "three": 3,
-    "four": 4,
-    "five": 5,
-    "six": 6,
-    "seven": 7,
-    "eight": 8,
-    "nine": 9,
-    "ten": 10,
-    "pair": 2,
-    "couple": 2,
-}
-_GROUP_WORDS = {
-    "several",
-    "some",
-    "many",
-    "few",
-    "group",
-    "groups",
-    "crowd",
-    "traffic",
-    "row",
-    "line",
-    "queue",
-    "platoon",
-    "convoy",
-    "multiple",
-    "other",
-    "others",
-}
-_NOT_PLURAL = {"bus", "gas", "its", "this", "is", "was", "has", "as", "us", "plus", "campus"}
-# The noun phrase ends where a place or a relative clause begins ("cars parked on the ...").
-_PHRASE_END = re.compile(
-    r"\b(?:on|at|in|near|by|behind|beside|next|along|from|with|that|which|who)\b"
-)
 
 
 @dataclass(frozen=True)
@@ -289,34 +250,12 @@ def _reach(ego: AgentTrace, adversary: AgentTrace) -> float | None:
     return min(path.distance(Point(p.x, p.y)) for p in adversary.trajectory)
 
 
-def participant_allowance(text: str) -> int | None:
-    """How many objects of the trace one participant text may stand for: its number
-    ("two parked cars": 2), any number for a plural or a group ("parked cars", None), else 1."""
-    words = re.findall(r"[a-z0-9]+", text.lower())
-    for word in words:
-        if word.isdigit() and int(word) > 0:
-            return int(word)
-        if word in _NUMBERS:
-            return _NUMBERS[word]
-    if any(word in _GROUP_WORDS for word in words):
-        return None
-    head = _PHRASE_END.split(text.lower(), maxsplit=1)[0]
-    plural = [
-        w
-        for w in re.findall(r"[a-z]+", head)
-        if len(w) > 3
-        and w.endswith("s")
-        and not w.endswith(("ss", "us", "is"))
-        and w not in _NOT_PLURAL
-    ]
-    return None if plural else 1
-
-
-def actor_counts(participants: list[str]) -> tuple[int, int | None]:
-    """Fewest and most other objects the participants account for (None: no upper bound)."""
-    allowances = [participant_allowance(text) for text in participants]
-    most = None if None in allowances else sum(a or 0 for a in allowances)
-    return len(participants), most
+def actor_counts(actors: list[Actor]) -> tuple[int, int | None]:
+    """Fewest and most other objects the cast's actors (the adversary's copies aside)
+    account for (None: no upper bound, a plural or a group with no number)."""
+    others = [a for a in actors if a.role is not ActorRole.ADVERSARY]
+    most = None if any(not a.count_stated for a in others) else sum(a.count for a in others)
+    return len(others), most
 
 
 # -- the comparison -------------------------------------------------------------------------
@@ -399,7 +338,7 @@ def check_conformity(
         )
     )
     others = [a for a in facts.agents if not a.is_ego and a is not adversary]
-    fewest, most = actor_counts(spec.participants)
+    fewest, most = actor_counts(spec.actors)
     # The others of a counted adversary ("two pedestrians") are neither missing nor extra.
     more = sum(a.count for a in spec.actors if a.role is ActorRole.ADVERSARY)
     fewest, most = fewest + more, None if most is None else most + more
@@ -460,9 +399,7 @@ def _allowed(most: int | None) -> str:
 
 def _named_classes(spec: ScenarioSpec) -> set[ActorClass]:
     """The classes of what the text names besides the adversary (its other copies too)."""
-    named = {mention.cls for words in spec.participants for mention in read_cast(words).others}
-    named |= {actor.scenic_class for actor in spec.actors}
-    return named
+    return {actor.scenic_class for actor in spec.actors}
 
 
 def _same_class(kind: str, named: ActorClass) -> bool:

@@ -24,7 +24,6 @@ from arise.kb.loader import KnowledgeBase
 from arise.kb.retrieval.base import Retriever
 from arise.kb.schema import CONFLICT_ROUTE, Component, Entry
 from arise.kb.weather import weather_entry
-from arise.language.cast import read_cast
 from arise.vocabulary import (
     POINT_CLASSES,
     ActorRole,
@@ -615,11 +614,15 @@ def _add_extras(
 
     misc_pool = [e for e in kb.of(Component.MISC) if fits(e)]
     chosen_misc: list[Entry] = []
-    unplaced = [p for i, p in enumerate(spec.participants) if i not in (placed or set())]
-    for participant in unplaced[:MAX_MISC]:
-        # Only an entry that places what the participant's words name: a bus stop is a
-        # prop, not a bus; nothing is added for a thing no entry places.
-        named = {mention.cls for mention in read_cast(participant).others}
+    unplaced = [
+        (spec.participants[i], actor)
+        for i, actor in enumerate(spec.actors[: len(spec.participants)])
+        if i not in (placed or set())
+    ]
+    for participant, actor in unplaced[:MAX_MISC]:
+        # Only an entry that places the class the cast gave this participant: a bus stop
+        # is a prop, not a bus; nothing is added for a thing no entry places.
+        named = {actor.scenic_class}
         same_kind = [e for e in misc_pool if _created_classes(e) and _created_classes(e) <= named]
         picked = _ranked(retriever, participant, Component.MISC, same_kind)[:1]
         if not picked:

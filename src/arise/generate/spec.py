@@ -66,6 +66,11 @@ class Actor(BaseModel):
     role: ActorRole
     scenic_class: ActorClass = Field(description="the Scenic class (Car, Van, Bus, Cone, ...)")
     count: int = Field(default=1, ge=1, description="how many the text names")
+    count_stated: bool = Field(
+        default=True,
+        description="the count is stated (a number or one); False for a plural or a group "
+        "with no number, which stands for any number of them",
+    )
     start: RelativePosition | None = Field(
         default=None, description="where it starts, seen from the ego; None: not stated"
     )

@@ -17,7 +17,7 @@ rests on and to the actor those words are about.
 from __future__ import annotations
 
 import re
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 from arise.language.lexicon import class_pattern, lexicon, noun_class
 from arise.vocabulary import ActorClass
@@ -41,6 +41,12 @@ _DEFINITE = re.compile(r"\b(?:the|that|this|its|their|his|her)\s+(?:[\w'-]+[- ])
 _NOT_NEW_THING = re.compile(
     r"\b(?:both|all|neither|either|no|any|none of the|no one|nobody|each|other)\s+"
     r"(?:other\s+)?(?:\w+\s+)?$",
+    re.I,
+)
+# A group with no number: "several cyclists", "a row of parked cars".
+_GROUP = re.compile(
+    r"\b(?:several|some|many|few|multiple|groups? of|crowd of|row of|line of|queue of|"
+    r"platoon of|convoy of|stream of)\s+(?:[\w'-]+\s+){0,2}$",
     re.I,
 )
 _PLURAL = re.compile(r"(?:s|ren|men|ple|ies)$", re.I)
@@ -86,6 +92,9 @@ class Mention:
     end: int
     quote: str
     spans: tuple[Span, ...]
+    #: The count is stated ("two vans", "a van"); False for a plural or a group with no
+    #: number ("parked cars", "several cyclists"), which stands for any number of them.
+    counted: bool = True
 
     @property
     def is_prop(self) -> bool:
@@ -93,7 +102,7 @@ class Mention:
 
     def with_span(self, span: Span) -> Mention:
         spans = tuple(sorted({*self.spans, span}, key=lambda s: s.start))
-        return Mention(self.cls, self.count, self.start, self.end, self.quote, spans)
+        return replace(self, spans=spans)
 
 
 @dataclass(frozen=True)
@@ -271,10 +280,14 @@ def read_cast(text: str) -> Cast:
             index = found.index(earlier)
             found[index] = earlier.with_span(span)
             continue
-        if count == 1 and _PLURAL.search(word) and cls not in ("Bus", "Debris", "Pedestrian"):
+        plural = bool(_PLURAL.search(word)) and cls not in ("Bus", "Debris")
+        counted = bool(count_match) or not (plural or _GROUP.search(before))
+        if count == 1 and plural and cls != "Pedestrian":
             count = 2 if not count_match else count
         quote_start = phrase_start(text, start)
-        found.append(Mention(cls, count, start, end, text[quote_start:end], (span,)))
+        found.append(
+            Mention(cls, count, start, end, text[quote_start:end], (span,), counted=counted)
+        )
         if kind.startswith(("V", "P")) and kind != "noun":
             numbered[kind] = len(found) - 1
     found = _numbered_descriptions(text, found, numbered)
@@ -330,13 +343,10 @@ def _numbered_descriptions(
         if not inner:
             continue
         named = inner[0]
-        merged = Mention(
-            named.cls,
-            mention.count,
-            mention.start,
-            mention.end,
-            mention.quote,
-            tuple(sorted({*mention.spans, *named.spans}, key=lambda s: s.start)),
+        merged = replace(
+            mention,
+            cls=named.cls,
+            spans=tuple(sorted({*mention.spans, *named.spans}, key=lambda s: s.start)),
         )
         found = [merged if m is mention else m for m in found if m is not named]
         numbered = {k: found.index(merged) if v == index else v for k, v in numbered.items()}

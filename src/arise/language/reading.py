@@ -31,7 +31,9 @@ def _implied(cast: Cast) -> Cast:
     if hit is None:
         return cast
     span = Span(hit.start, hit.end)
-    mention = Mention(_IMPLIED_CLASS[hit.value], 1, hit.start, hit.end, hit.quote, (span,))
+    cls = _IMPLIED_CLASS[hit.value]
+    counted = hit.value == "obstacle"  # traffic is any number of cars
+    mention = Mention(cls, 1, hit.start, hit.end, hit.quote, (span,), counted=counted)
     return replace(cast, others=(mention,))
 
 
