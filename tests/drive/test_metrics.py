@@ -146,6 +146,21 @@ def test_progress_needs_the_route_within_ten_metres() -> None:
     assert got.route_following == 0
 
 
+def test_progress_does_not_jump_to_a_later_leg_of_the_route_close_by() -> None:
+    # Out 50 m east, across 3.5 m, back west: 103.5 m. Driving the first 30 m passes
+    # 3.5 m from the way back (arc 73.5 m there), which must not count.
+    route = ((0.0, 0.0), (50.0, 0.0), (50.0, 3.5), (0.0, 3.5))
+    got = measure(car("ego", line((0, 0), (10, 0), 30, EAST), ego=True), route=route)
+    assert got.route_completion == pytest.approx(30 / 103.5, abs=1e-4)
+
+
+def test_driving_the_route_backwards_from_its_end_completes_nothing() -> None:
+    got = measure(
+        car("ego", line((100, 0), (-10, 0), 50, WEST), ego=True), route=((0.0, 0.0), (100.0, 0.0))
+    )
+    assert got.route_completion == 0 and got.time_spent_s == pytest.approx(5.0)
+
+
 def test_steady_acceleration_of_two_metres_per_second_squared() -> None:
     poses = [(0.5 * 2.0 * (i * DT) ** 2, 0.0, EAST) for i in range(51)]
     got = measure(car("ego", poses, ego=True))

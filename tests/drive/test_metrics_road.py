@@ -13,11 +13,12 @@ from pathlib import Path
 
 import pytest
 
+from arise.agents.types import LightState, SignalKind, SignalTrace
 from arise.drive.metrics import DrivingMetrics, LaneRef, ScenicRoad, compute_metrics
 from arise.drive.metrics_road import lane_invasions, out_of_road_length
 from arise.errors import AriseError
 from arise.maps.registry import MapRegistry, cached_copy
-from tests.drive.test_metrics import DT, EAST, Pose, car, facts
+from tests.drive.test_metrics import DT, EAST, NORTH, Pose, car, facts
 
 
 def _shipped(name: str) -> Path:
@@ -160,3 +161,28 @@ def test_the_point_queries_agree_with_scenic_s_own(crossroads: ScenicRoad) -> No
         lanes += lane is not None
         junctions += inside
     assert lanes > 100 and junctions > 50  # the grid covers arms and the junction
+
+
+# The northbound entry into the junction: lanes x in [0, 7], the junction from y = -14.
+NORTH_ENTRY = ((0.0, -14.0), (7.0, -14.0))  # left edge first: the order says southbound
+
+
+@pytest.mark.parametrize(
+    "ends", [NORTH_ENTRY, NORTH_ENTRY[::-1]], ids=["left-first", "right-first"]
+)
+def test_the_junction_says_which_way_a_stop_line_stops_traffic(
+    crossroads: ScenicRoad, ends: tuple[tuple[float, float], tuple[float, float]]
+) -> None:
+    light = SignalTrace(
+        id="north", kind=SignalKind.TRAFFIC_LIGHT, stop_line=ends, states=[(0, LightState.RED)]
+    )
+    northbound = [(5.25, -40.0 + i, NORTH) for i in range(60)]
+    southbound = [(5.25, 19.0 - i, NORTH + 3.14159) for i in range(60)]  # the wrong way
+    for poses, runs in ((northbound, 1), (southbound, 0)):
+        route = (poses[0][:2], poses[-1][:2])
+        trace = facts([car("ego", poses, ego=True)], route=route, signals=[light])
+        assert compute_metrics(trace, crossroads, timeout_s=60).red_lights_run == runs
+    # without a network only the order tells: left-first reads as a southbound line
+    route = (northbound[0][:2], northbound[-1][:2])
+    alone = facts([car("ego", northbound, ego=True)], route=route, signals=[light])
+    assert compute_metrics(alone, None, timeout_s=60).red_lights_run == (ends != NORTH_ENTRY)

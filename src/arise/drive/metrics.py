@@ -105,8 +105,8 @@ def compute_metrics(
         return DrivingMetrics(
             collision=int(met.count > 0),
             collision_count=met.count,
-            red_lights_run=red_lights_run(facts.signals, ego),
-            stop_signs_run=stop_signs_run(facts.signals, ego),
+            red_lights_run=red_lights_run(facts.signals, ego, road),
+            stop_signs_run=stop_signs_run(facts.signals, ego, road),
             out_of_road_m=round(out_of_road, 3),
             distance_to_route_m=round(distance, 3),
             route_following=round(route_following(distance), 4),

@@ -19,7 +19,8 @@ from arise.drive.metrics_track import Floats
 
 #: A point farther than this from the route makes no progress along it.
 PROGRESS_RADIUS_M = 10.0
-#: Progress is searched at most this far ahead of the progress made so far.
+#: Progress is searched at most this far ahead of the progress made so far (plus the
+#: distance the ego moved since the step before).
 PROGRESS_WINDOW_M = 20.0
 #: The route is complete once the ego is this close to its end, along it.
 END_TOLERANCE_M = 1.0
@@ -45,15 +46,24 @@ class RouteProgress:
 
 
 def _project(
-    ax: Floats, ay: Floats, bx: Floats, by: Floats, px: float, py: float
+    ax: Floats,
+    ay: Floats,
+    bx: Floats,
+    by: Floats,
+    px: float,
+    py: float,
+    starts: Floats,
+    horizon: float,
 ) -> tuple[Floats, Floats]:
-    """For each segment (a, b): the fraction along it of the point's projection, and the
-    point's distance to it."""
+    """For each segment (a, b) starting `starts` metres along the route: the fraction
+    along it of the point's projection, cut where the route passes `horizon` metres, and
+    the point's distance to that projection."""
     dx, dy = bx - ax, by - ay
     squared = dx * dx + dy * dy
     with np.errstate(divide="ignore", invalid="ignore"):
         fraction = np.where(squared > 0, ((px - ax) * dx + (py - ay) * dy) / squared, 0.0)
-    fraction = np.clip(fraction, 0.0, 1.0)
+        reach = np.where(squared > 0, (horizon - starts) / np.sqrt(squared), 1.0)
+    fraction = np.clip(fraction, 0.0, np.clip(reach, 0.0, 1.0))
     return fraction, np.hypot(ax + fraction * dx - px, ay + fraction * dy - py)
 
 
@@ -67,13 +77,17 @@ def follow_route(route: EgoRoute, xs: Floats, ys: Floats) -> RouteProgress:
     reached = np.zeros(len(xs))
     completed_at: int | None = None
     progress = 0.0
+    moves = np.hypot(np.diff(xs, prepend=xs[:1]), np.diff(ys, prepend=ys[:1]))
     for index, (px, py) in enumerate(zip(xs.tolist(), ys.tolist(), strict=True)):
         if len(seglen):
+            horizon = progress + PROGRESS_WINDOW_M + float(moves[index])
             first = int(np.searchsorted(starts, progress, side="right")) - 1
             first = min(max(0, first), len(seglen) - 1)
-            last = int(np.searchsorted(starts, progress + PROGRESS_WINDOW_M, side="right"))
+            last = int(np.searchsorted(starts, horizon, side="right"))
             window = slice(first, max(first + 1, min(last, len(seglen))))
-            fraction, distance = _project(ax[window], ay[window], bx[window], by[window], px, py)
+            fraction, distance = _project(
+                ax[window], ay[window], bx[window], by[window], px, py, starts[window], horizon
+            )
             best = int(np.argmin(distance))
             if distance[best] <= PROGRESS_RADIUS_M:
                 arc = float(starts[first + best] + fraction[best] * seglen[first + best])
