@@ -473,6 +473,21 @@ def test_an_absurd_timestep_is_an_error_not_an_infinite_metric() -> None:
         compute_metrics(absurd, None, timeout_s=10.0)
 
 
+def test_a_trace_too_tangled_for_a_pet_is_refused_not_measured_for_minutes(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    # The ego dwells on one spot for 200 steps and leaves; the other arrives there and
+    # dwells for 200 steps: 40,000 overlapping pairs of footprints, above a bound of 10,000.
+    from arise.drive import metrics_encounters
+
+    monkeypatch.setattr(metrics_encounters, "MAX_PET_PAIRS", 10_000)
+    dwell = [(0.001 * (i % 2), 0.0, EAST) for i in range(200)]
+    ego = car("ego", dwell + [(30.0, 0.0, EAST)] * 200, ego=True)
+    other = car("other", [(60.0, 0.0, EAST)] * 200 + dwell, behavior="AdversaryBehavior")
+    with pytest.raises(MetricsError, match="too many to measure a PET"):
+        measure(ego, other, timeout_s=40)
+
+
 def test_the_metrics_are_finite_and_named_as_the_columns() -> None:
     got = measure(*crossing(-5.03))
     assert list(got.model_dump()) == [

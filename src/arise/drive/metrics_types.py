@@ -46,7 +46,7 @@ class DrivingMetrics(BaseModel):
     alone looks past a first collision, to the end of the drive.
     """
 
-    model_config = ConfigDict(extra="forbid", frozen=True)
+    model_config = ConfigDict(extra="forbid", frozen=True, strict=True)
 
     collision: Annotated[int, Field(ge=0, le=1)]  # CR: 1 when the ego touched anyone
     collision_count: Count  # contacts (starts of an overlap) with any other agent
