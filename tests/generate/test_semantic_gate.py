@@ -291,6 +291,21 @@ def test_a_gate_failure_goes_to_the_model_when_no_candidate_is_left() -> None:
     assert "weather" not in asked.split("Section SPAWN:")[0], "only its own contradictions"
 
 
+def test_the_gate_stops_when_the_model_fix_left_the_contradiction_and_no_candidate_is_left() -> (
+    None
+):
+    first = "adv = new Pedestrian left of ego by 5"
+    second = "adv = new Pedestrian left of ego by 9"
+    model = ScriptedProvider([f"```scenic\n{first}\n```", f"```scenic\n{second}\n```"])
+    run, draft, context = setup(spawn(1), provider=model)  # no other spawn
+    validate = gated([passed(), passed()], [[SIDE], [SIDE]])
+    outcome = repair_loop(run, draft.script, validate, context, max_repairs=8)
+    assert kinds(run) == [AttemptKind.INITIAL, AttemptKind.LLM], "one model fix, not eight"
+    assert len(model.requests) == 1
+    assert outcome.status is RunStatus.EXECUTED
+    assert (outcome.message or "").startswith("no repair left for")
+
+
 def test_missing_actors_are_not_fixed_by_dropping_one() -> None:
     model = ScriptedProvider(["```scenic\ncyclist = new Bicycle ahead of ego by 20\n```"])
     run, _, context = setup(provider=model)

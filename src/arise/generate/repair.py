@@ -126,6 +126,9 @@ class RepairContext:
     seed: int | None = None
     llm_failures: dict[str, int] = field(default_factory=dict)
     tried: dict[str, set[str]] = field(default_factory=dict)  # section -> entry ids swapped in
+    # (section, check, expected) a model fix of that section was already asked to remove:
+    # asking again gives the same answer, so the gate stops instead.
+    model_asked: set[tuple[str, str, str]] = field(default_factory=set)
     maps: dict[str, frozenset[str]] = field(default_factory=dict)  # map name -> features
 
     def count_model_failure(self, section: str) -> None:
@@ -292,7 +295,9 @@ def semantic_repair(
 ) -> RepairStep:
     """A script that runs but contradicts the description: first a candidate that fits for a
     section a contradiction names, and only when none is left, a model fix of that section
-    told what the trace showed. Missing actors are never fixed by dropping one."""
+    told what the trace showed, once per contradiction: when no candidate is left and the
+    model was already asked, nothing can remove it and the gate stops. Missing actors are
+    never fixed by dropping one."""
     named = [c.section for c in found] or [diagnostic.section or ""]
     sections = [s for s in dict.fromkeys(named) if s in SECTION_COMPONENT]
     for section in sections:
@@ -305,6 +310,10 @@ def semantic_repair(
     usage = Usage()
     for section in sections:
         own = [c for c in found if c.section == section]
+        keys = {(section, c.check, c.expected) for c in own}
+        if keys and keys <= context.model_asked:
+            continue  # a model fix of this section already failed to remove these
+        context.model_asked |= keys
         told = diagnostic.model_copy(
             update={
                 "section": section,
