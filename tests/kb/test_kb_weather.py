@@ -13,6 +13,7 @@ from arise.kb.schema import Component, Entry
 from arise.kb.weather import (
     SPEC_ENTRY_ID,
     entry_weather,
+    weather_choice,
     weather_entry,
     weather_problems,
     weather_snippet,
@@ -87,3 +88,13 @@ def test_an_out_of_bounds_parameter_is_caught() -> None:
     problems = weather_problems(f"param weather = {values!r}\n")
     assert any("fog_density" in problem for problem in problems), problems
     assert entry_weather(_weather_entry(f"param weather = {values!r}\n")) is None
+
+
+def test_the_choice_is_the_entry_that_sets_exactly_the_weather_else_the_spec_entry() -> None:
+    entries = load_kb().of(Component.WEATHER)
+    assert weather_choice(Weather.preset_only("WetNight"), entries).id == "weather.wet_night"
+    fog = weather_for("ClearNoon", Visibility.FOG)
+    assert weather_choice(fog, entries).id == "weather.fog"
+    odd = weather_for("SoftRainNoon", Visibility.SMOKE, Light.DAWN)
+    chosen = weather_choice(odd, entries)
+    assert chosen.id == SPEC_ENTRY_ID and chosen.snippet == weather_snippet(odd)

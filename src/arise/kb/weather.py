@@ -11,12 +11,20 @@ from __future__ import annotations
 
 import ast
 import re
+from collections.abc import Iterable
 
 from arise.kb.schema import Component, Entry
 from arise.vocabulary import WEATHER_FIELDS
 from arise.weather import Weather, WeatherValueError
 
-__all__ = ["SPEC_ENTRY_ID", "entry_weather", "weather_entry", "weather_problems", "weather_snippet"]
+__all__ = [
+    "SPEC_ENTRY_ID",
+    "entry_weather",
+    "weather_choice",
+    "weather_entry",
+    "weather_problems",
+    "weather_snippet",
+]
 
 #: The id of the entry `weather_entry` makes (it is in no data file).
 SPEC_ENTRY_ID = "weather.from_spec"
@@ -38,6 +46,16 @@ def weather_entry(weather: Weather) -> Entry:
         snippet=weather_snippet(weather),
         tags=["spec"],
     )
+
+
+def weather_choice(weather: Weather, entries: Iterable[Entry]) -> Entry:
+    """The entry to place for this weather: a knowledge-base entry that sets exactly it
+    (its `# kb:` mark then names a proven entry), else `weather_entry(weather)`."""
+    for entry in entries:
+        found = entry_weather(entry)
+        if found is not None and found.same_as(weather):
+            return entry
+    return weather_entry(weather)
 
 
 def _value(snippet: str) -> object:
