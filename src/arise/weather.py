@@ -162,6 +162,7 @@ def fog_density_for(range_m: float) -> float:
 # -- names for conditions --------------------------------------------------------------------
 
 
+# The conditions the language rules name (`weather_for` turns them into parameters).
 class Visibility(StrEnum):
     CLEAR = "clear"
     MIST = "mist"
@@ -208,13 +209,14 @@ SUN_ALTITUDE: Mapping[TimeOfDay, float] = {
 }
 
 
-def _parts(preset: str) -> tuple[Sky, TimeOfDay] | None:
+def preset_parts(preset: str) -> tuple[Sky, TimeOfDay] | None:
+    """(sky, time of day) of a preset; None for Default, which has neither."""
     if preset == "DustStorm":
         return Sky.DUST, TimeOfDay.NOON
     for time in TimeOfDay:
         if preset.endswith(time.value):
             head = preset.removesuffix(time.value).replace("Rainy", "Rain")
-            if head in Sky._value2member_map_:
+            if head in {sky.value for sky in Sky}:
                 return Sky(head), time
     return None
 
@@ -222,14 +224,9 @@ def _parts(preset: str) -> tuple[Sky, TimeOfDay] | None:
 def preset_of(sky: Sky, time: TimeOfDay) -> str | None:
     """The preset with that sky and time of day (CARLA spells MidRain two ways), if any."""
     for name in WEATHER_PRESETS:
-        if _parts(name) == (sky, time):
+        if preset_parts(name) == (sky, time):
             return name
     return None
-
-
-def preset_parts(preset: str) -> tuple[Sky, TimeOfDay] | None:
-    """(sky, time of day) of a preset; None for Default, which has neither."""
-    return _parts(preset)
 
 
 # -- the value ------------------------------------------------------------------------------
@@ -392,8 +389,8 @@ class Weather(BaseModel):
             return self.preset
         values = self.parameters()
         time = time_of_day(values["sun_altitude_angle"])
-        candidates = [name for name in WEATHER_PRESETS if _parts(name) is not None]
-        fitting = [name for name in candidates if _parts(name) in _same_time(time)]
+        candidates = [name for name in WEATHER_PRESETS if preset_parts(name) is not None]
+        fitting = [name for name in candidates if preset_parts(name) in _same_time(time)]
         return min(fitting, key=lambda name: _sky_distance(values, name))
 
     def same_as(self, other: Weather) -> bool:
@@ -529,7 +526,7 @@ def weather_for(
         raise WeatherValueError(f"{base!r} is no CARLA weather preset")
     if visibility is Visibility.CLEAR and light is None:
         return Weather.preset_only(base)
-    sky, time = _parts(base) or _parts(DEFAULT_WEATHER) or (Sky.CLEAR, TimeOfDay.NOON)
+    sky, time = preset_parts(base) or preset_parts(DEFAULT_WEATHER) or (Sky.CLEAR, TimeOfDay.NOON)
     sky = _sky_for(sky, visibility, light)
     if light is not None:
         time = _TIMES[light]
