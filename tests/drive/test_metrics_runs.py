@@ -9,6 +9,7 @@ facts, and the route the world model recorded must be the one the ego drove.
 from __future__ import annotations
 
 import math
+from pathlib import Path
 
 import pytest
 
@@ -63,3 +64,30 @@ def test_idm_stops_short_and_scores_better(validator_pool: WorkerPool) -> None:
     )
     _, blind = drive(validator_pool, "blind")
     assert got.overall_score > blind.overall_score
+
+
+def test_a_red_light_run_on_a_real_run_and_a_green_one(
+    validator_pool: WorkerPool, tmp_path: Path
+) -> None:
+    # The example's ego sets its light green and waits while it is red; turned round, it
+    # sets it red and drives on: its scripted behavior runs the red light.
+    source = (EXAMPLES / "categories" / "red_light_running.scenic").read_text()
+    wait = 'while withinDistanceToTrafficLight(self, 20) and getClosestTrafficLightStatus(self) == "Red":'
+    assert wait in source and 'take SetTrafficLightAction("green")' in source
+    reckless = tmp_path / "ego_runs_the_red.scenic"
+    reckless.write_text(
+        source.replace(wait, "while False:").replace(
+            'take SetTrafficLightAction("green")', 'take SetTrafficLightAction("red")'
+        )
+    )
+    for script, runs in ((EXAMPLES / "categories" / "red_light_running.scenic", 0), (reckless, 1)):
+        options = CheckOptions(seed=7, timeout=90)
+        result = check(script, options, pool=validator_pool)
+        assert result.ok and result.simulation is not None and result.map is not None
+        facts = result.simulation
+        assert facts.signals  # the junction's lights were recorded
+        got = compute_metrics(
+            facts, ScenicRoad.from_map(result.map.path), timeout_s=options.steps * facts.timestep
+        )
+        assert got.red_lights_run == runs, script.name
+        assert got.route_completion > 0.5
