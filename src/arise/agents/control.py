@@ -112,11 +112,18 @@ class RoutePath:
         return best
 
     def point_at(self, station: float) -> tuple[float, float]:
-        """The point `station` metres along (clamped to the ends)."""
+        """The point `station` metres along; before the start the first point, past the
+        end the path goes on straight along its last segment (a driver who reaches the end
+        of its route keeps its direction rather than turning back to the last point)."""
         if station <= 0 or len(self.points) == 1:
             return self.points[0]
         if station >= self.length:
-            return self.points[-1]
+            (ax, ay), (bx, by) = self.points[-2], self.points[-1]
+            span = math.hypot(bx - ax, by - ay)
+            if span == 0:
+                return self.points[-1]
+            extra = station - self.length
+            return (bx + (bx - ax) / span * extra, by + (by - ay) / span * extra)
         i = bisect_right(self.stations, station) - 1
         a, b = self.points[i], self.points[i + 1]
         span = self.stations[i + 1] - self.stations[i]

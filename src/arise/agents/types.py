@@ -154,7 +154,8 @@ class Observation:
     yaw_rate: float  # rad/s, positive to the left
     width: float
     length: float
-    # The next route waypoints from the one nearest the ego (up to ~60 m ahead).
+    # Route points every 2 m ahead of the ego's nearest point on it, 60 m of them; past
+    # the route's end they go on straight along its last direction.
     route_ahead: tuple[tuple[float, float], ...]
     # Metres left along the route from the ego's nearest point to its end.
     route_remaining: float

@@ -27,6 +27,7 @@ from arise.validate.worldmodel.signals import Approach, SignalModel
 
 SENSING_RADIUS = 60.0  # metres, centre to centre
 ROUTE_AHEAD = 60.0  # metres of route in each observation
+ROUTE_SPACING = 2.0  # metres between its points
 LIGHTS_AHEAD = 100.0  # metres along the route
 DEFAULT_SPEED_LIMIT = 50 / 3.6  # m/s, where the map gives none
 _CLASSES = {
@@ -120,10 +121,10 @@ class EgoDriver:
         x, y = float(ego.position.x), float(ego.position.y)
         self.station, _ = self.path.project(x, y, near=self.station)
         station = self.station
+        # Every ROUTE_SPACING metres ahead; past the route's end it goes on straight.
         ahead = [
-            p
-            for p, s in zip(self.path.points, self.path.stations, strict=True)
-            if station <= s <= station + ROUTE_AHEAD
+            self.path.point_at(station + k * ROUTE_SPACING)
+            for k in range(1, int(ROUTE_AHEAD / ROUTE_SPACING) + 1)
         ]
         actors = []
         for name, obj in self.others:

@@ -7,10 +7,19 @@ say it in one of three ways, tried in order:
 2. the script names the list `egoRoute` (a behavior of its own then follows it);
 3. neither: the ego follows its lane (FollowLaneBehavior), straight on through junctions.
 
-The route then goes on along the last lane's successors (straight on through junctions,
-as the world model's lane follower does) until it is long enough for the whole run at the
-target speed. The target speed is the behavior's first number (or its `target_speed`),
-else the script's OPT_EGO_SPEED or EGO_SPEED parameter, else 8 m/s.
+Where the route ends says when the ego has done its task (route completion, as in
+SafeBench, whose routes end just past the scenario's conflict):
+
+- a script that names the lanes: `PAST_LAST_LANE` (40 m) into the last lane it names,
+  i.e. just past the junction or merge its maneuver crosses;
+- else a script that ends when the ego is `OPT_REQ_END_DISTANCE` from its start (the
+  knowledge base's ending): that far along;
+- else as far as the ego would go in the whole run at its target speed, plus 40 m,
+
+never further than the road goes (the route follows the last lane's successors, straight
+on through junctions, as the world model's lane follower does). The target speed is the
+behavior's first number (or its `target_speed`), else the script's OPT_EGO_SPEED or
+EGO_SPEED parameter, else 8 m/s.
 """
 
 from __future__ import annotations
@@ -24,6 +33,8 @@ WAYPOINT_SPACING = 2.0  # metres between route points
 DEFAULT_SPEED = 8.0  # m/s
 SPEED_PARAMETERS = ("OPT_EGO_SPEED", "EGO_SPEED")
 EXTRA_LENGTH = 40.0  # metres beyond what the run needs at the target speed
+PAST_LAST_LANE = 40.0  # metres into the last lane a script names
+END_PARAMETER = "OPT_REQ_END_DISTANCE"
 
 
 def read_route(scene: Any, ego: Any, network: Any, steps: int, timestep: float) -> EgoRoute | None:
@@ -31,7 +42,8 @@ def read_route(scene: Any, ego: Any, network: Any, steps: int, timestep: float) 
     if network is None or ego is None:
         return None
     speed = _target_speed(scene, ego)
-    lanes = _given_lanes(scene, ego) or []
+    given = _given_lanes(scene, ego) or []
+    lanes = list(given)
     start = network.laneAt(ego.position)
     if start is None and lanes:
         start = lanes[0]
@@ -43,7 +55,17 @@ def read_route(scene: Any, ego: Any, network: Any, steps: int, timestep: float) 
         lanes = lanes[lanes.index(start) :]
     needed = speed * steps * timestep + EXTRA_LENGTH
     lanes = _extend(lanes, needed, ego)
-    points = _points(lanes, (float(ego.position.x), float(ego.position.y)), needed)
+    origin = (float(ego.position.x), float(ego.position.y))
+    length = needed
+    if given and given[-1] in lanes:
+        last = lanes.index(given[-1])
+        length = min(needed, _station_of_lane(lanes, last, origin) + PAST_LAST_LANE)
+    else:
+        end = _number(dict(getattr(scene, "params", {}) or {}).get(END_PARAMETER))
+        if end is not None and end > 0:
+            length = min(needed, end)
+    lanes = _lanes_within(lanes, origin, length)
+    points = _points(lanes, origin, length)
     if not points:
         return None
     maneuver = _maneuver(lanes)
@@ -124,6 +146,37 @@ def _extend(lanes: list[Any], needed: float, ego: Any) -> list[Any]:
     return out
 
 
+def _centreline(lanes: list[Any]) -> list[tuple[float, float]]:
+    coords: list[tuple[float, float]] = []
+    for lane in lanes:
+        for x, y, *_ in lane.centerline.lineString.coords:
+            point = (float(x), float(y))
+            if not coords or math.dist(coords[-1], point) > 1e-6:
+                coords.append(point)
+    return coords
+
+
+def _station_of_lane(lanes: list[Any], index: int, origin: tuple[float, float]) -> float:
+    """Metres from the ego's projection on the route to the start of lanes[index]."""
+    from shapely.geometry import LineString, Point
+
+    coords = _centreline(lanes)
+    if len(coords) < 2:
+        return 0.0
+    before = sum(float(lane.centerline.length) for lane in lanes[:index])
+    return max(0.0, before - LineString(coords).project(Point(*origin)))
+
+
+def _lanes_within(lanes: list[Any], origin: tuple[float, float], length: float) -> list[Any]:
+    """The lanes the first `length` metres of the route touch."""
+    kept = []
+    for index, lane in enumerate(lanes):
+        if index and _station_of_lane(lanes, index, origin) > length:
+            break
+        kept.append(lane)
+    return kept
+
+
 def _points(
     lanes: list[Any], start: tuple[float, float], needed: float
 ) -> list[tuple[float, float]]:
@@ -131,12 +184,7 @@ def _points(
     projection on the first lane."""
     from shapely.geometry import LineString, Point
 
-    coords: list[tuple[float, float]] = []
-    for lane in lanes:
-        for x, y, *_ in lane.centerline.lineString.coords:
-            point = (float(x), float(y))
-            if not coords or math.dist(coords[-1], point) > 1e-6:
-                coords.append(point)
+    coords = _centreline(lanes)
     if len(coords) < 2:
         return []
     line = LineString(coords)

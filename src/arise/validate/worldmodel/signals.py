@@ -118,7 +118,7 @@ class SignalModel:
                             str(inter.uid),
                         )
                     )
-            _assign_phases(lights, entries)
+            _assign_phases(lights)
             self.approaches.extend(lights)
 
     # --- state ---------------------------------------------------------------------------
@@ -183,7 +183,8 @@ class SignalModel:
 
 def _stop_line(lanes: list[Any]) -> tuple[tuple[float, float], tuple[float, float]] | None:
     """The segment across the ends of these lanes (the two end points farthest apart of
-    their left and right edges)."""
+    their left and right edges), ordered (p1, p2) with p1 on the right and p2 on the left
+    as the stopping traffic sees them: it travels along p2 - p1 turned clockwise."""
     ends: list[tuple[float, float]] = []
     for lane in lanes:
         for edge in (lane.leftEdge, lane.rightEdge):
@@ -193,10 +194,15 @@ def _stop_line(lanes: list[Any]) -> tuple[tuple[float, float], tuple[float, floa
     if len(ends) < 2:
         return None
     a, b = max(combinations(ends, 2), key=lambda pair: math.dist(*pair))
+    centre = [(float(x), float(y)) for x, y, *_ in lanes[0].centerline.lineString.coords]
+    if len(centre) >= 2:
+        tx, ty = centre[-1][0] - centre[-2][0], centre[-1][1] - centre[-2][1]
+        if (b[1] - a[1]) * tx - (b[0] - a[0]) * ty < 0:
+            a, b = b, a
     return (a, b)
 
 
-def _assign_phases(lights: list[Approach], entries: dict[int, list[Any]]) -> None:
+def _assign_phases(lights: list[Approach]) -> None:
     """Phase A: entries within 45 degrees of the first one's direction, either way."""
     if not lights:
         return
@@ -208,6 +214,6 @@ def _assign_phases(lights: list[Approach], entries: dict[int, list[Any]]) -> Non
 
 
 def _entry_heading(approach: Approach) -> float:
-    """The direction across its stop line (perpendicular), up to a half turn."""
+    """The direction across its stop line (perpendicular to it)."""
     (ax, ay), (bx, by) = approach.stop_line
     return math.atan2(by - ay, bx - ax) + math.pi / 2
