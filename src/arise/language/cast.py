@@ -206,9 +206,10 @@ def _numbered_ego(text: str) -> str | None:
     if not numbers:
         return None
     for match in _NUMBERED.finditer(text):
-        end = sentence_end(text, match.end())
-        window = text[match.end() : min(end, match.end() + 80)]
-        if _AUTONOMOUS.search(window) and not _NUMBERED.search(window):
+        end = min(sentence_end(text, match.end()), match.end() + 80)
+        following = _NUMBERED.search(text, match.end(), end)
+        window = text[match.end() : following.start() if following else end]
+        if _AUTONOMOUS.search(window):
             return match.group(1)
     return "1" if "1" in numbers else min(numbers)
 
@@ -357,7 +358,7 @@ def _ego_appositions(text: str, ego: list[Span], found: list[Mention]) -> list[M
     """ "V1, a 2019 ... in driverless mode, ...", "the AV (a white SUV)": the ego described,
     not one more actor."""
     for span in ego:
-        after = re.match(r",?\s*\(?\s*(?:a|an)\s+[^,;.()]{1,60}", text[span.end :])
+        after = re.match(r"\s*[,(]\s*(?:a|an)\s+[^,;.()]{1,60}", text[span.end :])
         if not after:
             continue
         start, end = span.end + after.start(), span.end + after.end()

@@ -1,0 +1,95 @@
+"""Who a description names: the ego under its names, each other road user once, with its
+class and count. Every sentence here is written for these tests."""
+
+from __future__ import annotations
+
+import pytest
+
+from arise.language.cast import read_cast
+from arise.language.reading import parse
+
+
+def _named(text: str) -> list[tuple[str, int]]:
+    return [(m.cls.value, m.count) for m in parse(text).others]
+
+
+def _ego_words(text: str) -> list[str]:
+    cast = parse(text)
+    return [text[s.start : s.end] for s in cast.ego]
+
+
+@pytest.mark.parametrize(
+    ("text", "ego"),
+    [
+        ("The test vehicle slows as a bus pulls out.", ["test vehicle"]),
+        ("The subject vehicle was stopped when a van rolled back.", ["subject vehicle"]),
+        ("I was driving my car down Elm Road when a bike appeared.", ["I", "my car"]),
+        # NHTSA's typology names the ego "Vehicle", with no article.
+        ("Vehicle turning right; a cyclist going straight on its right.", ["Vehicle"]),
+    ],
+)
+def test_the_ego_is_found_under_its_names(text: str, ego: list[str]) -> None:
+    assert _ego_words(text) == ego
+
+
+def test_nhtsa_phrasing_has_the_ego_and_one_other_vehicle() -> None:
+    text = (
+        "Vehicle going straight at a junction; another vehicle from the left crosses its "
+        "path. The other vehicle strikes Vehicle's side."
+    )
+    cast = parse(text)
+    assert [m.cls.value for m in cast.others] == ["Car"]
+    assert len(cast.others[0].spans) == 2, "'the other vehicle' is the one named before"
+
+
+def test_numbered_parties_the_autonomous_one_is_the_ego() -> None:
+    text = (
+        "V1 was northbound. V2, a self-driving shuttle, was behind V1 and touched its "
+        "rear bumper. V1 stopped."
+    )
+    cast = parse(text)
+    assert [text[s.start : s.end] for s in cast.ego] == ["V2"]
+    assert [m.quote for m in cast.others] == ["V1"]
+
+
+def test_the_first_numbered_vehicle_is_the_ego_when_none_is_called_autonomous() -> None:
+    text = "V1 turned left. V2, a pickup, came the other way and struck V1."
+    cast = parse(text)
+    assert [text[s.start : s.end] for s in cast.ego] == ["V1", "V1"]
+    assert [(m.cls.value, len(m.spans)) for m in cast.others] == [("Truck", 2)]
+
+
+@pytest.mark.parametrize(
+    ("text", "named"),
+    [
+        # a year and a name we never heard of name a car
+        ("A 2018 Velora Strand that was behind the ego rolled into it.", [("Car", 1)]),
+        # a known make after a colour
+        ("A silver Subaru Outback pulled out of a driveway.", [("Car", 1)]),
+        # the make and the noun name one vehicle
+        ("A 2015 Brask Hauler pickup cut in front of the ego.", [("Truck", 1)]),
+        # the ego described is not one more actor
+        ("The AV, a white hatchback in autonomous mode, slowed for a cyclist.", [("Bicycle", 1)]),
+        # the ego's own driver and the driver of a named vehicle are no road users
+        ("The AV's safety driver braked as the driver of a van opened a door.", [("Van", 1)]),
+        ("A box truck stopped ahead; a box fell off it.", [("Truck", 1), ("Box", 1)]),
+    ],
+)
+def test_road_users_are_named_once_with_their_class(
+    text: str, named: list[tuple[str, int]]
+) -> None:
+    assert _named(text) == named
+
+
+@pytest.mark.parametrize(
+    ("text", "counted"),
+    [
+        ("two parked vans", True),
+        ("a parked van", True),
+        ("parked vans along the street", False),
+        ("several cyclists", False),
+        ("a row of parked cars", False),
+    ],
+)
+def test_a_count_is_stated_or_open(text: str, counted: bool) -> None:
+    assert read_cast(text).others[0].counted is counted

@@ -1,0 +1,71 @@
+"""Whose is each verb: clauses and their subjects, and the classes of language the issue
+names (a side said while the ego turns, two roles in one scene, the subject carried over).
+Every sentence here is written for these tests."""
+
+from __future__ import annotations
+
+import pytest
+
+from arise.generate.readers import read_facts
+from arise.language.reading import parse
+
+
+def _subject_of(text: str, words: str) -> str | None:
+    cast = parse(text)
+    subject = cast.subject_at(text.index(words))
+    if subject is None or isinstance(subject, str):
+        return subject
+    return subject.quote
+
+
+@pytest.mark.parametrize(
+    ("text", "words", "subject"),
+    [
+        # the subject carries over past a relative clause about someone else
+        ("The ego trails a van that slows, then pulls out to pass it.", "pulls out", "ego"),
+        ("A van that the ego trails slows down.", "slows", "A van"),
+        # a participle right after an actor is that actor's
+        ("The ego follows a tractor turning left.", "turning left", "a tractor"),
+        # a sentence that opens with a participle takes the subject after it
+        ("Turning right at the lights, the ego meets a runner.", "Turning right", "ego"),
+        # a leading prepositional phrase is no subject
+        ("At the roundabout the ego turns left.", "turns left", "ego"),
+        # an actor after a preposition is not the clause's subject
+        ("In front of the ego a scooter brakes.", "brakes", "a scooter"),
+        # "it" opening a clause continues the subject that agrees in number
+        ("A cab stops, and it then reverses.", "reverses", "A cab"),
+        ("Two joggers cross while it waits at the line.", "waits", "ego"),
+    ],
+)
+def test_each_verb_has_the_subject_of_its_clause(text: str, words: str, subject: str) -> None:
+    if text.startswith("Two joggers"):
+        text = "The ego stops. " + text
+    assert _subject_of(text, words) == subject
+
+
+def test_a_side_said_while_the_ego_turns_is_the_actors_own() -> None:
+    text = "While the ego turns left at the lights, a courier bike on the right front carries on."
+    facts = read_facts(text)
+    assert facts["ego"]["maneuver"] == "turn_left"
+    assert facts["a courier bike"]["start"] == "adjacent_lane_right"
+
+
+def test_two_roles_in_one_scene_stay_two_actors() -> None:
+    text = (
+        "The ego is stuck behind a slow tractor and moves into the left lane, where a "
+        "motorbike is coming up from behind in the left lane."
+    )
+    facts = read_facts(text)
+    assert facts["ego"]["maneuver"] == "change_lane"
+    assert facts["ego"]["lane_side"] == "left"
+    assert facts["a slow tractor"]["start"] == "ahead_same_lane"
+    assert facts["a motorbike"]["start"] == "adjacent_lane_left"
+
+
+def test_a_parked_car_and_a_walker_each_keep_their_own_words() -> None:
+    text = "A van is parked on the right; a man steps out from the left in front of the ego."
+    facts = read_facts(text)
+    assert facts["A van"]["start"] == "roadside_right"
+    assert facts["A van"]["stationary"] == "true"
+    assert facts["a man"]["start"] == "crossing_road_from_left"
+    assert "stationary" not in facts["a man"]

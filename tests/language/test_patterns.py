@@ -1,0 +1,53 @@
+"""The phrase pattern language the reading rules are written in."""
+
+from __future__ import annotations
+
+import pytest
+
+from arise.language.errors import RuleError
+from arise.language.patterns import compile_pattern
+
+CLASSES = {"side": ("left", "right"), "ego": ("ego", "ego vehicle", "av")}
+
+
+@pytest.mark.parametrize(
+    ("pattern", "text", "found"),
+    [
+        ("oncoming", "an oncoming van", "oncoming"),
+        ("oncoming", "an oncomingvan", None),  # whole words only
+        ("right front", "on the right-front", "right-front"),
+        ("left-hand lane", "in the left hand lane", "left hand lane"),
+        ("overtak*", "it overtakes the ego", "overtakes"),
+        ("turns left|right", "then turns right", "turns right"),
+        ("the? bus stop", "near bus stop", "bus stop"),
+        ("in ~ lane", "in the lane", "in the lane"),
+        ("ahead in", "ahead, in the lane", "ahead, in"),
+        ("lane to the? @ego", "the lane to the ego vehicle", "lane to the ego vehicle"),
+        (
+            "stop|stops ... then go",
+            "stops at the line and then go",
+            "stops at the line and then go",
+        ),
+        ("stop|stops ... then go", "stops. Then go", None),  # not across sentences
+        ("<side> turn !left|right", "a right turn left", None),
+        ("<side> turn !left|right", "a right turn ahead", "right turn"),
+        ("junction", "a non-junction stretch", None),  # a hyphenated word is one word
+    ],
+)
+def test_a_pattern_matches_whole_words(pattern: str, text: str, found: str | None) -> None:
+    match = compile_pattern(pattern, CLASSES).search(text)
+    if found is None:
+        assert match is None
+    else:
+        assert match is not None and match.group(0).endswith(found)
+
+
+def test_a_slot_gives_the_word_it_matched() -> None:
+    match = compile_pattern("in the <side> lane", CLASSES).search("in the Left lane")
+    assert match is not None and match.group("side") == "Left"
+
+
+@pytest.mark.parametrize("pattern", ["", "<nowhere>", "@nowhere", "the? a?", "left;right"])
+def test_a_malformed_pattern_is_a_rule_error(pattern: str) -> None:
+    with pytest.raises(RuleError):
+        compile_pattern(pattern, CLASSES)
