@@ -428,3 +428,22 @@ def test_ahead_in_its_lane_holds_for_the_lane_a_turning_ego_enters() -> None:
     facts = facts.model_copy(update={"agents": [ego, elsewhere]})
     [check] = [c for c in check_conformity(spec, facts).checks if c.name == "spawn_position"]
     assert not check.ok, "8 m off the ego's path is not in its lane"
+
+
+def test_a_foggy_spec_needs_the_fog_that_ran_not_only_its_preset() -> None:
+    from arise.weather import Light, Visibility, weather_for
+
+    fog = weather_for("ClearNoon", Visibility.FOG)
+    spec = ScenarioSpec.model_validate(
+        {**SPEC, "weather": fog.closest_preset(), "weather_parameters": fog.model_dump()}
+    )
+
+    def gate(seen: str) -> set[str]:
+        facts = _facts().model_copy(update={"params": {"weather": seen}})
+        return {c.check for c in contradictions(check_conformity(spec, facts))}
+
+    assert gate(fog.param_text()) == set()
+    assert gate("CloudyNoon") == {"weather"}, "the preset alone has no fog"
+    dusk = weather_for("ClearNoon", Visibility.FOG, Light.DUSK)
+    assert gate(dusk.param_text()) == {"weather"}
+    assert "weather" not in gate("{not json"), "unreadable text is unknown, not contradicted"

@@ -26,6 +26,7 @@ from arise.validate.types import (
     TracePoint,
 )
 from arise.vocabulary import ActorClass, ActorRole, EgoManeuver, RelativePosition, RoadType
+from arise.weather import Weather, WeatherValueError
 
 LANE_HALF = 1.8  # |lateral offset| below this is "in the ego's lane"
 NEXT_LANE = 5.6  # up to this is the adjacent lane
@@ -327,16 +328,7 @@ def check_conformity(
                 gated=spec.spawn_position not in ROADSIDE,
             )
         )
-    weather = facts.params.get("weather")
-    known_weather = weather is not None and not weather.startswith("{")
-    add(
-        ConformityCheck(
-            "weather",
-            spec.weather,
-            weather or "unset",
-            (weather == spec.weather) if known_weather else None,
-        )
-    )
+    add(_weather_check(spec, facts.params.get("weather")))
     others = [a for a in facts.agents if not a.is_ego and a is not adversary]
     fewest, most = actor_counts(spec.actors)
     # The others of a counted adversary ("two pedestrians") are neither missing nor extra.
@@ -389,6 +381,19 @@ def _actor_check(
     return ConformityCheck(
         f"actor {index + 1}", expected, observed, len(placed) >= actor.count, gated=False
     )
+
+
+def _weather_check(spec: ScenarioSpec, seen: str | None) -> ConformityCheck:
+    """The weather that ran against the spec's: the same parameters when the words needed
+    more than a preset (fog, dusk), else the same preset. Unreadable text is unknown."""
+    wanted = spec.weather_parameters or Weather.preset_only(spec.weather)
+    if seen is None:
+        return ConformityCheck("weather", spec.weather, "unset", False)
+    try:
+        ran = Weather.from_param_text(seen)
+    except WeatherValueError:
+        return ConformityCheck("weather", wanted.describe(), "unreadable", None)
+    return ConformityCheck("weather", wanted.describe(), ran.describe(), ran.same_as(wanted))
 
 
 def _allowed(most: int | None) -> str:

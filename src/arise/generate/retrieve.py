@@ -23,7 +23,7 @@ from arise.kb.actors import for_actor, spawn_span
 from arise.kb.loader import KnowledgeBase
 from arise.kb.retrieval.base import Retriever
 from arise.kb.schema import CONFLICT_ROUTE, Component, Entry
-from arise.kb.weather import weather_entry
+from arise.kb.weather import weather_choice
 from arise.vocabulary import (
     POINT_CLASSES,
     ActorRole,
@@ -598,7 +598,7 @@ def _add_extras(
     participant already `placed` as an actor of its own (by index) gets no misc entry."""
     weathers = kb.of(Component.WEATHER)
     if spec.weather_parameters is not None:  # fog, dusk, glare: no preset says it all
-        weathers = [weather_entry(spec.weather_parameters)]
+        weathers = [weather_choice(spec.weather_parameters, weathers)]
     exact = [e for e in weathers if f"'{spec.weather}'" in e.snippet]
     ranked = exact or _ranked(retriever, spec.weather, Component.WEATHER, weathers)
     if ranked:
