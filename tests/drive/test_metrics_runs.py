@@ -91,3 +91,39 @@ def test_a_red_light_run_on_a_real_run_and_a_green_one(
         )
         assert got.red_lights_run == runs, script.name
         assert got.route_completion > 0.5
+
+
+# The stem of our T-junction carries a stop sign: the ego turns right out of it.
+STEM_RIGHT_TURN = """\
+param map = localPath('maps/arise_tjunction.xodr')
+param carla_map = 'arise_tjunction'
+model scenic.simulators.carla.model
+behavior EgoGo():
+    do FollowTrajectoryBehavior(target_speed=7, trajectory=egoRoute)
+    do FollowLaneBehavior(target_speed=7)
+egoManeuver = Uniform(*[m for i in network.intersections for m in i.maneuvers if m.type is ManeuverType.RIGHT_TURN and m.startLane.road.uid == 'road3'])
+egoRoute = [egoManeuver.startLane, egoManeuver.connectingLane, egoManeuver.endLane]
+egoStart = new OrientedPoint at egoManeuver.startLane.centerline.pointAlongBy(-30), facing roadDirection
+ego = new Car at egoStart, with behavior EgoGo()
+terminate when (distance to egoStart) > 60
+"""
+
+
+def test_blind_runs_the_stop_sign_and_idm_stops_for_it(
+    validator_pool: WorkerPool, tmp_path: Path
+) -> None:
+    script = tmp_path / "stem_right_turn.scenic"
+    script.write_text(STEM_RIGHT_TURN)
+    seen = {}
+    for agent in ("blind", "idm"):
+        options = CheckOptions(seed=7, timeout=90, agent=agent)
+        result = check(script, options, pool=validator_pool)
+        assert result.ok and result.simulation is not None and result.map is not None
+        facts = result.simulation
+        assert [s.kind.value for s in facts.signals] == ["stop_sign"]
+        road = ScenicRoad.from_map(result.map.path)
+        seen[agent] = compute_metrics(facts, road, timeout_s=options.steps * facts.timestep)
+    assert seen["blind"].stop_signs_run == 1 and seen["idm"].stop_signs_run == 0
+    # both complete the turn onto the main road; the stop costs idm time
+    assert seen["blind"].route_completion == seen["idm"].route_completion == 1.0
+    assert seen["idm"].time_spent_s > seen["blind"].time_spent_s
