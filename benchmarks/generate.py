@@ -113,8 +113,9 @@ def _median_of(rows: list[dict[str, Any]], pick: Any) -> float:
 
 
 def select_prompts(args: argparse.Namespace) -> list[BenchPrompt]:
-    """The dev set, its first --limit prompts, or --sample prompts spread evenly over it."""
-    prompts = read_prompts(PROMPTS)
+    """The prompt file (the dev set by default), its first --limit prompts, or --sample
+    prompts spread evenly over it."""
+    prompts = read_prompts(Path(args.prompts))
     if args.sample:
         step = len(prompts) / args.sample
         return [prompts[int(i * step)] for i in range(args.sample)]
@@ -150,10 +151,10 @@ def prefix_store_runs(args: argparse.Namespace, out: Path) -> None:
 
 def print_prefix_table(rows: list[dict[str, Any]]) -> None:
     print(
-        "\n| prefix store | runs | executed | median s per executable script (wall) "
+        "\n| prefix store | runs | executed | median s per executable script (wall) | p90 s "
         "| median prompt tokens | median prompt tokens evaluated | median completion tokens |"
     )
-    print("|---|---|---|---|---|---|---|")
+    print("|---|---|---|---|---|---|---|---|")
     medians: dict[str, float] = {}
     for store in ("off", "on"):
         mine = [r for r in rows if r["store"] == store]
@@ -161,8 +162,10 @@ def print_prefix_table(rows: list[dict[str, Any]]) -> None:
             continue
         ok = [r for r in mine if r["ok"]]
         medians[store] = _median_of(ok, lambda r: r["wall_seconds"])
+        walls = sorted(r["wall_seconds"] for r in ok)
+        p90 = walls[min(len(walls) - 1, int(0.9 * len(walls)))] if walls else float("nan")
         print(
-            f"| {store} | {len(mine)} | {len(ok)} | {medians[store]:.1f} "
+            f"| {store} | {len(mine)} | {len(ok)} | {medians[store]:.1f} | {p90:.1f} "
             f"| {_median_of(ok, lambda r: r['llm'].get('prompt_tokens', 0)):.0f} "
             f"| {_median_of(ok, lambda r: r['llm'].get('prompt_tokens_evaluated', 0)):.0f} "
             f"| {_median_of(ok, lambda r: r['llm'].get('completion_tokens', 0)):.0f} |"
@@ -192,6 +195,9 @@ def print_prefix_table(rows: list[dict[str, Any]]) -> None:
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument(
+        "--prompts", default=str(PROMPTS), help="prompt file (default: the dev prompt set)"
+    )
     parser.add_argument("--limit", type=int, default=None, help="first N prompts only")
     parser.add_argument("--mode", default="arise", choices=[m.value for m in Mode])
     parser.add_argument("--provider", default=None)
