@@ -181,3 +181,29 @@ def test_the_ray_executor_drives_confined(tmp_path: Path) -> None:
     )
     [record] = summary.records
     assert record.driven and (record.sandbox or "").startswith("landlock+seccomp+rlimits")
+
+
+@pytest.mark.slow
+def test_a_users_agent_from_a_file_drives(tmp_path: Path) -> None:
+    """The README's agent (examples/agents/careful.py) through `arise drive`: loaded by the
+    worker before confinement, it brakes where the script's own ego is hit."""
+    source = _scripts(tmp_path / "scripts", "red_light_running")
+    out = tmp_path / "out"
+    agent = EXAMPLES / "agents" / "careful.py"
+    result = runner.invoke(
+        app, ["drive", str(source), "--agent", f"{agent}:Careful", "--out", str(out)]
+    )
+    assert result.exit_code == 0, result.output
+    [row] = _csv(out / "runs.csv")
+    assert row["agent"] == "careful.py:Careful" and row["status"] == "driven"
+    assert row["collision"] == "0"  # the scripted ego collides here (test above)
+    assert "careful.py:Careful" in (out / "report.md").read_text().splitlines()[0]
+    # A class the file does not have: one line, and no run saved as done for it.
+    missing = runner.invoke(
+        app, ["drive", str(source), "--agent", f"{agent}:Reckless", "--out", str(out)]
+    )
+    assert missing.exit_code == 2, missing.output
+    assert missing.output.strip().splitlines()[-1].startswith("error: agent ")
+    assert "careful.py has no 'Reckless'" in missing.output and "Traceback" not in missing.output
+    with sqlite3.connect(out / "drive.sqlite") as db:
+        assert [a for (a,) in db.execute("SELECT agent FROM runs")] == [f"{agent}:Careful"]

@@ -18,6 +18,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+from arise.agents import AgentError
 from arise.drive.agent_names import agent_label
 from arise.drive.measure import measure
 from arise.drive.records import DriveRecord, DriveStatus, DriveTask
@@ -92,7 +93,8 @@ def replay_folder(task: DriveTask) -> str:
 
 def drive_one(task: DriveTask, config: DriveConfig, pool: WorkerPool, out: Path) -> DriveRecord:
     """Check the task's script with the agent; a run that drove gets its metrics, and its
-    replay when it collided. Never raises for a bad script."""
+    replay when it collided. Never raises for a bad script; AgentError when the agent
+    cannot be made."""
     started = time.perf_counter()
     options = config.check_options(task.seed)
     result = check(Path(task.script), options, pool=pool)
@@ -103,6 +105,10 @@ def drive_one(task: DriveTask, config: DriveConfig, pool: WorkerPool, out: Path)
         map=result.map.name if result.map else None,
     )
     if not result.ok or result.simulation is None:
+        if result.diagnostic is not None and result.diagnostic.error_type == AgentError.__name__:
+            # The agent itself cannot be made (no such class, an import that fails): every
+            # run would fail the same way, and a fixed agent must not find them done.
+            raise AgentError(result.diagnostic.message)
         record.message = result.diagnostic.one_line() if result.diagnostic else "did not run"
     else:
         timeout_s = options.steps * result.simulation.timestep
