@@ -139,3 +139,21 @@ def test_a_users_agent_from_a_file_drives() -> None:
     assert not broken.ok and broken.diagnostic is not None
     assert broken.diagnostic.error_type == "AgentError"
     assert "Crashing" in broken.diagnostic.message and "sensor fault" in broken.diagnostic.message
+
+
+def test_the_scripts_own_ego_behavior_still_sets_its_light_while_idm_drives(
+    validator_pool: WorkerPool,
+) -> None:
+    for seed in (2, 3):  # the ego comes in on either phase of the junction's cycle
+        result = check(
+            AGENTS / "green_light.scenic", CheckOptions(seed=seed, agent="idm"), pool=validator_pool
+        )
+        assert result.ok and result.simulation is not None, result.summary()
+        facts = result.simulation
+        light = _ego_light(facts)
+        # The behavior's SetTrafficLightAction("green") ran (its driving actions did not) ...
+        assert light.states == [(0, LightState.GREEN)]
+        # ... so idm, not the behavior, drove straight over the junction without stopping.
+        assert _ego(facts).behavior == "IdmAgent"
+        assert _crossed(_ego(facts), light.stop_line) is not None
+        assert min(p.speed for p in _ego(facts).trajectory[60:]) > 6.0

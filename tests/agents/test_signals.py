@@ -55,22 +55,33 @@ def test_the_cycle_is_fixed_and_never_green_for_both_phases() -> None:
         assert states != {LightState.GREEN} and LightState.RED in states
 
 
-def test_a_light_a_script_sets_holds_and_the_trace_records_each_change() -> None:
+def test_the_trace_records_each_change_of_the_cycle() -> None:
     model = SignalModel(_network("arise_intersection4"), timestep=0.1)
-    road4 = next(a for a in model.approaches if a.id.endswith("/road4"))
-    assert model.state(road4, 0) is LightState.GREEN
-    model.hold(road4, "red", 50)
-    assert model.state(road4, 49) is LightState.GREEN
-    assert model.state(road4, 400) is LightState.RED  # held past its cycle's green
-    trace = next(t for t in model.traces(400) if t.id == road4.id)
-    assert trace.states == [(0, LightState.GREEN), (50, LightState.RED)]
-    other = next(t for t in model.traces(300) if t.id.endswith("/road1"))
-    assert [state for _, state in other.states[:3]] == [
+    road1 = next(t for t in model.traces(300) if t.id.endswith("/road1"))
+    assert [state for _, state in road1.states[:3]] == [
         LightState.RED,
         LightState.GREEN,
         LightState.YELLOW,
     ]
-    assert other.states[1][0] == 140  # phase B turns green after A's 10 + 3 + 1 s
+    assert road1.states[1][0] == 140  # phase B turns green after A's 10 + 3 + 1 s
+
+
+def test_a_light_a_script_sets_holds_and_switches_its_junction() -> None:
+    model = SignalModel(_network("arise_intersection4"), timestep=0.1)
+    entry = {a.id.split("/")[-1]: a for a in model.approaches}
+    assert model.state(entry["road4"], 0) is LightState.GREEN
+    model.hold(entry["road4"], "red", 50)  # e.g. an adversary about to run its red
+    assert model.state(entry["road4"], 49) is LightState.GREEN
+    for step in (50, 139, 400):  # held past both phases' own changes
+        assert model.state(entry["road4"], step) is LightState.RED
+        assert model.state(entry["road2"], step) is LightState.RED  # its phase follows
+        assert model.state(entry["road1"], step) is LightState.GREEN  # the crossing has green
+        assert model.state(entry["road3"], step) is LightState.GREEN
+    trace = next(t for t in model.traces(400) if t.id == entry["road4"].id)
+    assert trace.states == [(0, LightState.GREEN), (50, LightState.RED)]
+    model.hold(entry["road1"], "off", 60)  # a dark light is dark alone
+    assert model.state(entry["road1"], 60) is LightState.OFF
+    assert model.state(entry["road3"], 60) is LightState.GREEN
 
 
 def test_a_stop_sign_of_the_map_stops_one_entry() -> None:

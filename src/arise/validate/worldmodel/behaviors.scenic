@@ -41,8 +41,16 @@ behavior CrossingBehavior(reference_actor, min_speed=1, threshold=10, final_spee
     else:
         take SetSpeedAction(final_speed)
 
-behavior AgentDrivesBehavior():
-    """Holds the ego's seat while a driving agent drives it (`driver`): it takes no action,
-    the world model applies the agent's control each step."""
+behavior AgentDrivesBehavior(original=None):
+    """Holds the ego's seat while a driving agent drives it (`driver`). The script's own
+    ego behavior still runs beside it for what it does to the world (a traffic light it
+    sets, the scenario it ends); the simulator drops its driving actions, and the agent's
+    control moves the ego. Should it fail (it may expect the ego where the agent did not
+    go), the seat simply waits."""
+    if original is not None:
+        try:
+            do original
+        except Exception:
+            pass
     while True:
         wait

@@ -9,8 +9,9 @@ from it.
 The lights run a fixed cycle, deterministic from the map: at each junction the entries
 roughly parallel to the first one (within 45 degrees, either way) form phase A, the rest
 phase B; A is green for 10 s, yellow 3 s, then all red 1 s, then B likewise (28 s). A
-script that sets a light (the CARLA model's traffic-light helpers) holds it at that colour
-from then on. `traces` gives every light's changes for the trace (`SignalTrace`).
+script that sets a light (the CARLA model's traffic-light helpers) holds it, and its
+junction with it, from then on (`SignalModel.hold`). `traces` gives every light's changes
+for the trace (`SignalTrace`).
 """
 
 from __future__ import annotations
@@ -153,14 +154,34 @@ class SignalModel:
         return None
 
     def hold(self, approach: Approach, color: str, step: int) -> None:
-        """A script set this light: it stays at that colour (off: dark)."""
-        if approach.kind is SignalKind.TRAFFIC_LIGHT:
-            approach.overrides.append((step, _COLORS.get(color, LightState.OFF)))
+        """A script set this light: from now on it stays at that colour, and its junction
+        switches with it, as a signal controller would: green or yellow here holds the
+        crossing phase red, red here holds the crossing phase green (a light set red so
+        that someone runs it: the traffic crossing its path has green). The entries of
+        its own phase follow it. Off darkens this light alone."""
+        state = _COLORS.get(color, LightState.OFF)
+        if approach.kind is not SignalKind.TRAFFIC_LIGHT:
+            return
+        if state is LightState.OFF:
+            approach.overrides.append((step, state))
+            return
+        crossing = LightState.GREEN if state is LightState.RED else LightState.RED
+        for other in self.approaches:
+            if (
+                other.kind is SignalKind.TRAFFIC_LIGHT
+                and other.intersection == approach.intersection
+            ):
+                other.overrides.append((step, state if other.phase == approach.phase else crossing))
 
     def hold_intersection(self, intersection_uid: str, color: str, step: int) -> None:
+        """Every light of a junction held at one colour (`setAllIntersectionTrafficLightsStatus`)."""
+        state = _COLORS.get(color, LightState.OFF)
         for approach in self.approaches:
-            if approach.intersection == intersection_uid:
-                self.hold(approach, color, step)
+            if (
+                approach.intersection == intersection_uid
+                and approach.kind is SignalKind.TRAFFIC_LIGHT
+            ):
+                approach.overrides.append((step, state))
 
     def traces(self, steps: int) -> list[SignalTrace]:
         """Every signal's state changes over steps 0..steps, for the trace."""

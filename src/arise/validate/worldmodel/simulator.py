@@ -36,6 +36,17 @@ from arise.validate.worldmodel.weather import check_weather
 
 DEFAULT_TIMESTEP = 0.1
 DEFAULT_STEPS = 300  # what a route is made long enough for when no step limit is given
+# Actions of the ego's own behavior still applied while an agent drives: they change the
+# world or only get recorded, never the ego's motion (`actions`).
+WORLD_ACTIONS = frozenset(
+    {
+        "SetTrafficLightAction",
+        "SetVehicleLightStateAction",
+        "SetGearAction",
+        "SetManualGearShiftAction",
+        "SetManualFirstGearShiftAction",
+    }
+)
 AUTOPILOT_LOOKAHEAD_MIN = 5.0  # metres
 AUTOPILOT_GAP = 8.0  # metres kept to whatever is ahead
 # Speed up to which the lateral gains apply as tuned; above it they shrink with 1/v^2.
@@ -171,9 +182,9 @@ class OfflineCarlaSimulation(DrivingSimulation):
                 f"agent '{name}' cannot drive: the ego starts on no lane of the map, so it has "
                 "no route"
             )
-        # The agent drives: the script's ego behavior is replaced by one that does nothing
-        # (Scenic wants every agent of the scene to have a behavior).
-        ego.behavior = _seat_behavior(self.scene)()
+        # The agent drives: the script's ego behavior runs inside the seat for its effects
+        # on the world; its driving actions are dropped (`executeActions`).
+        ego.behavior = _seat_behavior(self.scene)(ego.behavior)
         ego.arise_autopilot = None
         self.arise_driver = EgoDriver(
             make_agent(factory, name),
@@ -208,6 +219,17 @@ class OfflineCarlaSimulation(DrivingSimulation):
         if "elevation" in properties:
             values["elevation"] = 0.0
         return values
+
+    def executeActions(self, allActions: Any) -> None:
+        """With an agent at the wheel, the ego's scripted actions keep only their effects
+        on the world (lights, recorded settings): nothing else may move the ego."""
+        if self.arise_driver is not None:
+            ego = self.arise_driver.ego
+            if ego in allActions:
+                allActions[ego] = tuple(
+                    action for action in allActions[ego] if type(action).__name__ in WORLD_ACTIONS
+                )
+        super().executeActions(allActions)
 
     # --- physics -------------------------------------------------------------------
     def step(self) -> None:
