@@ -259,6 +259,18 @@ class EgoPlan(StrEnum):
     PULL_OVER = "ego_pulls_over"  # pulls over to the kerb and stops
 
 
+# A constraint the description states in words (a requirement the semantic gate checks).
+# No docstring: it would change the extraction schema the model is given.
+class RequirementKind(StrEnum):
+    VISIBLE_AT_START = "visible_at_start"
+    NOT_VISIBLE_AT_START = "not_visible_at_start"
+    DISTANCE_AT_START = "distance_at_start"
+    EVENTUALLY_CLOSE = "eventually_close"
+    IN_INTERSECTION = "in_intersection"
+    SAME_DIRECTION = "same_direction"
+    OPPOSITE_DIRECTION = "opposite_direction"
+
+
 class Side(StrEnum):
     """Which way the ego changes lanes, when the description says."""
 

@@ -32,6 +32,12 @@ CLASSES = {"side": ("left", "right"), "ego": ("ego", "ego vehicle", "av")}
         ("<side> turn !left|right", "a right turn left", None),
         ("<side> turn !left|right", "a right turn ahead", "right turn"),
         ("junction", "a non-junction stretch", None),  # a hyphenated word is one word
+        ("# m|metres", "stops 20 m short", "20 m"),
+        ("# m|metres", "stops 20m short", "20m"),
+        ("# m|metres", "stops 2.5 metres short", "2.5 metres"),
+        ("# m|metres", "stops 20 mph short", None),
+        ("# m|metres", "stops m short", None),
+        ("within #", "passes within 2m of it", "within 2m"),
     ],
 )
 def test_a_pattern_matches_whole_words(pattern: str, text: str, found: str | None) -> None:

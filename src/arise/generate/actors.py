@@ -8,10 +8,9 @@ its side to the pedestrian. One actor per mention, in the order of `spec.partici
 
 from __future__ import annotations
 
-import re
-
 from arise.generate.readers import (
     Reading,
+    cue_before,
     moves,
     read_compass,
     read_position,
@@ -19,27 +18,10 @@ from arise.generate.readers import (
     words_of,
 )
 from arise.generate.spec import Actor
+from arise.language.cast import Cast, Mention
+from arise.language.rules import Fact, rulebook
 from arise.vocabulary import ActorRole, RelativePosition
 
-# Words that make a named thing hide the adversary ("a parked van hides the pedestrian").
-_HIDES = re.compile(
-    r"\b(?:hides?|hidden|hiding|blocks? (?:the|its|his|her) (?:view|line of sight)|"
-    r"blocking the (?:view|line of sight)|obscur\w*|occlud\w*)\b",
-    re.I,
-)
-# "steps out from behind a parked van", "walked out from in front of the truck": the van
-# or the truck hides the adversary.
-# ("the ego waits behind a stopped bus" is not one.)
-_BEHIND_IT = re.compile(r"\b(?:from|out) (?:behind|in front of)\s*$", re.I)
-# Waiting or standing still, for an actor that is not the adversary (whose waiting is the
-# calm before its move): it stays put.
-_WAITS = re.compile(r"\b(?:waits?|waiting|stands?|standing|queu\w*)\b", re.I)
-_PARKED = re.compile(r"\b(?:double[- ])?parked\b", re.I)
-_FOLLOWS = re.compile(
-    r"\bfollow(?:s|ing)? (?:the |our )?(?:ego|av)\b|\btailgat\w*|\bbehind (?:the )?(?:ego|av)\b",
-    re.I,
-)
-_SLOW = re.compile(r"\bslow(?:er|ly|[- ]moving)?\b|\bcrawl\w*|\bcreep\w*", re.I)
 _ROLE_OF_START: dict[RelativePosition, ActorRole] = {
     RelativePosition.ONCOMING: ActorRole.ONCOMING,
     RelativePosition.CROSSING_FROM_LEFT: ActorRole.CROSSING,
@@ -48,27 +30,36 @@ _ROLE_OF_START: dict[RelativePosition, ActorRole] = {
 }
 
 
+def _cues(text: str, stretches: list[tuple[int, int]]) -> set[str]:
+    """The role cues (rules of `role_cue`) in the words about an actor: occluder ("a van
+    hides the pedestrian"), waits, parked, follows, slow."""
+    book = rulebook()
+    return {hit.value for a, b in stretches for hit in book.hits(Fact.ROLE_CUE, text, a, b)}
+
+
 def _role(
     *,
     cls: str,
     prop: bool,
-    words: str,
-    before: list[str],
+    cues: set[str],
+    hides_behind: bool,
     start: RelativePosition | None,
     stationary: bool,
 ) -> ActorRole:
-    """The role the words give an actor; the strongest cue first."""
+    """The role the words give an actor; the strongest cue first. `hides_behind`: the
+    words right before it put someone behind it ("steps out from behind a parked van";
+    "the ego waits behind a stopped bus" is not one)."""
     if prop:
         return ActorRole.OBSTACLE
-    if _HIDES.search(words) or any(_BEHIND_IT.search(b) for b in before):
+    if "occluder" in cues or hides_behind:
         return ActorRole.OCCLUDER
     if stationary:
-        return ActorRole.PARKED if _PARKED.search(words) else ActorRole.STOPPED
+        return ActorRole.PARKED if "parked" in cues else ActorRole.STOPPED
     if start in _ROLE_OF_START:
         return _ROLE_OF_START[start]
-    if start is None and _FOLLOWS.search(words):
+    if start is None and "follows" in cues:
         return ActorRole.FOLLOWING
-    if _SLOW.search(words):
+    if "slow" in cues:
         return ActorRole.SLOW
     if start is RelativePosition.AHEAD_SAME_LANE:
         return ActorRole.LEAD
@@ -79,6 +70,39 @@ def _role(
     return ActorRole.LEAD
 
 
+def read_actor(cast: Cast, mention: Mention) -> Actor:
+    """One actor other than the adversary, from the words about it. Waiting or standing
+    still, for an actor that is not the adversary (whose waiting is the calm before its
+    move), means it stays put."""
+    text = cast.text
+    stretches = words_of(cast, mention)
+    cues = _cues(text, stretches)
+    position = read_compass(cast, mention) or read_position(cast, mention)
+    start = RelativePosition(position.value) if position is not None else None
+    stationary = read_stationary(cast, mention) is not None or bool(
+        "waits" in cues and not any(moves(text, a, b) for a, b in stretches)
+    )
+    role = _role(
+        cls=mention.cls,
+        prop=mention.is_prop,
+        cues=cues,
+        hides_behind=any(
+            cue_before(Fact.HIDES_BEHIND, text, a, spaced=False) for a, _ in stretches
+        ),
+        start=start,
+        stationary=stationary,
+    )
+    return Actor(
+        role=role,
+        scenic_class=mention.cls,
+        count=mention.count,
+        count_stated=mention.counted,
+        start=start,
+        stationary=stationary or mention.is_prop,
+        quote=mention.quote,
+    )
+
+
 def read_actors(reading: Reading) -> list[Actor]:
     """One actor per thing the description names other than the ego and the adversary, in
     the order of the spec's participants; then, when the text names the adversary with a
@@ -87,35 +111,8 @@ def read_actors(reading: Reading) -> list[Actor]:
     found: list[Actor] = []
     adversary = reading.adversary
     for mention in cast.others:
-        if mention is adversary:
-            continue
-        stretches = words_of(cast, mention)
-        words = " ".join(cast.text[a:b] for a, b in stretches)
-        before = [cast.text[max(0, a - 20) : a] for a, _ in stretches]
-        position = read_compass(cast, mention) or read_position(cast, mention)
-        start = RelativePosition(position.value) if position is not None else None
-        stationary = read_stationary(cast, mention) is not None or bool(
-            _WAITS.search(words) and not any(moves(cast.text, a, b) for a, b in stretches)
-        )
-        role = _role(
-            cls=mention.cls,
-            prop=mention.is_prop,
-            words=words,
-            before=before,
-            start=start,
-            stationary=stationary,
-        )
-        found.append(
-            Actor(
-                role=role,
-                scenic_class=mention.cls,
-                count=mention.count,
-                count_stated=mention.counted,
-                start=start,
-                stationary=stationary or mention.is_prop,
-                quote=mention.quote,
-            )
-        )
+        if mention is not adversary:
+            found.append(read_actor(cast, mention))
     if adversary is not None and adversary.count > 1:
         found.append(
             Actor(

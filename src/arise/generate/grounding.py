@@ -29,6 +29,7 @@ from arise.generate.readers import (
     words_of,
 )
 from arise.generate.spec import ExtractionAnswer, Requirement, RequirementKind, ScenarioSpec
+from arise.language.rules import Fact, rulebook
 from arise.vocabulary import (
     ActorClass,
     AdversaryManeuver,
@@ -43,23 +44,6 @@ from arise.vocabulary import (
 
 # -- the grounded spec ----------------------------------------------------------------------
 
-# The evidence a requirement of each kind needs in the text; the match is its quote.
-_REQUIREMENT_WORDS: dict[RequirementKind, str] = {
-    RequirementKind.VISIBLE_AT_START: r"visible|in (?:plain |clear )?(?:view|sight)|"
-    r"can see|sees|spots",
-    RequirementKind.NOT_VISIBLE_AT_START: r"hidden|hides|occlud\w*|out of (?:view|sight)|"
-    r"obscured|not visible|invisible|unseen|blind spot|"
-    r"(?:from )?behind (?:a|an|the) (?:parked|stopped|bus|van|truck|wall|hedge|car)",
-    RequirementKind.DISTANCE_AT_START: r"\d+(?:\.\d+)?\s*(?:m|meters?|metres?)\b|"
-    r"(?:meters?|metres?) (?:ahead|away|behind)",
-    RequirementKind.EVENTUALLY_CLOSE: r"comes? (?:very )?close|gets? (?:very )?close|"
-    r"near miss|close call|within \d|nearly (?:collide|hit|clip)\w*",
-    RequirementKind.IN_INTERSECTION: r"(?:in|inside|in the middle of) the (?:intersection|"
-    r"junction|crossroads)",
-    RequirementKind.SAME_DIRECTION: r"same direction|same way|side by side|alongside",
-    RequirementKind.OPPOSITE_DIRECTION: r"oncoming|opposite direction|the other way|"
-    r"head-on|towards? the ego",
-}
 # Kinds that cannot hold for an adversary that starts at this position.
 _REQUIREMENT_CONFLICTS: dict[RequirementKind, set[RelativePosition]] = {
     RequirementKind.SAME_DIRECTION: {
@@ -116,7 +100,16 @@ def _requirements(
     for requirement in answer.requirements:
         if requirement.kind in {r.kind for r in kept}:
             continue
-        evidence = re.search(rf"\b(?:{_REQUIREMENT_WORDS[requirement.kind]})", description, re.I)
+        # The evidence a requirement of each kind needs in the text (rules of `requirement`);
+        # the words are its quote.
+        evidence = next(
+            (
+                hit
+                for hit in rulebook().hits(Fact.REQUIREMENT, description)
+                if hit.value == requirement.kind
+            ),
+            None,
+        )
         if evidence is None:
             notes.append(
                 f"requirements: dropped {requirement.kind} (not stated in the description)"
@@ -124,7 +117,7 @@ def _requirements(
         elif position in _REQUIREMENT_CONFLICTS.get(requirement.kind, set()):
             notes.append(f"requirements: dropped {requirement.kind} (contradicts {position})")
         else:
-            kept.append(Requirement(kind=requirement.kind, text=evidence.group(0)))
+            kept.append(Requirement(kind=requirement.kind, text=evidence.quote))
     return kept, notes
 
 

@@ -21,7 +21,7 @@ from arise.language.cast import (
     sentence_end,
 )
 from arise.language.reading import parse
-from arise.language.rules import Fact, rulebook
+from arise.language.rules import Fact, Hit, rulebook
 from arise.vocabulary import (
     AdversaryManeuver,
     AdversaryType,
@@ -32,21 +32,16 @@ from arise.vocabulary import (
     StartDetail,
 )
 
-_SIDE = r"(?:the |its |his |her |their |the ego's |the av's )?"
-# "from the side road on its right": a road user coming out of a road from that side.
-_SIDE_ROAD = (
-    r"(?:from|out of) (?:the |a )?(?:side road|side street|cross street|driveway|"
-    r"minor road|junction)(?: on| to)? "
-)
-# The lane the ego moves into ("a car coming up in that lane"): resolved by the ego's own
-# lane change ("moves into the left lane").
-_TARGET_LANE = re.compile(
-    r"\b(?:in|into) (?:that|the target) lane\b|\bthe lane (?:the ego|the av|it) "
-    r"(?:enters|is entering|moves into|changes into|merges into|turns into|is turning into)\b",
-    re.I,
-)
-# "on the right"/"on its left" alone: a lane for a vehicle, the roadside for a walker.
-_BARE_SIDE = re.compile(rf"\b(?:on|to) {_SIDE}(left|right)\b(?![- ]turn)", re.I)
+
+def cue_before(fact: Fact, text: str, position: int, *, spaced: bool = True) -> Hit | None:
+    """The cue of `fact` whose words end right before `position` (within 20 characters,
+    only spaces between): "following | a van", "out from behind | a parked truck"."""
+    found = None
+    for hit in rulebook().hits(fact, text, max(0, position - 20), position):
+        between = text[hit.end : position]
+        if not between.strip() and (between or not spaced):
+            found = hit
+    return found
 
 
 @dataclass
@@ -87,50 +82,41 @@ def _passive_verb_start(text: str, lead: int) -> int:
     return max(0, lead - 60) + found.start(1) if found else lead
 
 
-# "the AV was following a van", "travelling ... behind a box truck": the ego's own verb
-# puts the object ahead of it in its lane.
-_EGO_BEHIND_IT = re.compile(
-    r"\b(?:following|follows|followed|trailing|behind)\s+$",
-    re.I,
-)
-
-
-# "riding between the AV and a car parked on the right": squeezed in on that side.
-_BETWEEN = re.compile(
-    r"^[^.;]{0,40}?\bbetween (?:the ego|the av|it) and (?:a|an|the) [^.;]{0,40}?"
-    r"\b(?:on|to) (?:the|its) (left|right)\b",
-    re.I,
-)
-
-
 def _squeezed_beside(cast: Cast, mention: Mention) -> GroundedFact | None:
+    """ "riding between the AV and a car parked on the right": squeezed in on that side,
+    when those words follow the actor within 40 characters of its sentence."""
+    text = cast.text
     for span in mention.spans:
-        found = _BETWEEN.search(cast.text[span.end :])
-        if found:
-            side = found.group(1).lower()
+        found = rulebook().first(Fact.BETWEEN, text, span.end)
+        if found is None:
+            continue
+        lead = text[span.end : found.start]
+        if len(lead) <= 40 and not re.search(r"[.;]", lead):
             return GroundedFact(
                 name="spawn_position",
                 value=(
                     RelativePosition.ADJACENT_LANE_LEFT
-                    if side == "left"
+                    if found.value == "left"
                     else RelativePosition.ADJACENT_LANE_RIGHT
                 ).value,
                 source=FactSource.TEXT,
-                quote=cast.text[span.end + found.start() : span.end + found.end()].strip(),
+                quote=text[span.end : found.end].strip(),
             )
     return None
 
 
 def _ego_follows(cast: Cast, mention: Mention) -> GroundedFact | None:
+    """ "the AV was following a van", "travelling ... behind a box truck": the ego's own
+    verb right before the actor puts it ahead of the ego in its lane."""
     for span in mention.spans:
         lead = phrase_start(cast.text, span.start)
-        found = _EGO_BEHIND_IT.search(cast.text[max(0, lead - 20) : lead])
-        if found and _subject(cast, max(0, lead - 20) + found.start()) == "ego":
+        found = cue_before(Fact.EGO_BEHIND, cast.text, lead)
+        if found and _subject(cast, found.start) == "ego":
             return GroundedFact(
                 name="spawn_position",
                 value=RelativePosition.AHEAD_SAME_LANE.value,
                 source=FactSource.TEXT,
-                quote=f"{found.group(0)}{cast.text[lead : span.end]}",
+                quote=cast.text[found.start : span.end],
             )
     return None
 
@@ -145,7 +131,6 @@ def read_position(cast: Cast, mention: Mention) -> GroundedFact | None:
         return told
     best: tuple[int, int, RelativePosition, str] | None = None
     for start, end in words_of(cast, mention):
-        words = cast.text[start:end]
         # A rule's `unless` may see a little past the stretch ("from behind | a parked
         # van"); the cue itself must lie inside it. The first hit of each position counts.
         cues: list[tuple[int, int, RelativePosition, str]] = []
@@ -163,9 +148,10 @@ def read_position(cast: Cast, mention: Mention) -> GroundedFact | None:
         for cue in cues:
             if best is None or cue[:2] < best[:2]:
                 best = cue
-        bare = _BARE_SIDE.search(words)
+        # "on the right"/"on its left" alone: a lane for a vehicle, the roadside for a walker.
+        bare = rulebook().first(Fact.BARE_SIDE, cast.text, start, end)
         if bare and best is None:
-            side = bare.group(1).lower()
+            side = bare.value
             walker = mention.cls in ("Pedestrian",) or mention.is_prop
             position = (
                 (
@@ -180,31 +166,24 @@ def read_position(cast: Cast, mention: Mention) -> GroundedFact | None:
                     else RelativePosition.ADJACENT_LANE_RIGHT
                 )
             )
-            best = (start + bare.start(), 99, position, bare.group(0))
-        target = _TARGET_LANE.search(words)
+            best = (bare.start, 99, position, bare.quote)
+        # The lane the ego moves into ("a car coming up in that lane"): resolved by the ego's
+        # own lane change ("moves into the left lane").
+        target = rulebook().first(Fact.TARGET_LANE, cast.text, start, end)
         lane_side = rulebook().first(Fact.LANE_SIDE, cast.text)
-        if target and not lane_side and (best is None or start + target.start() < best[0]):
+        if target and not lane_side and (best is None or target.start < best[0]):
             # The lane the ego turns into, with no lane change said: ahead on its route.
-            best = (start + target.start(), -1, RelativePosition.AHEAD_SAME_LANE, target.group(0))
+            best = (target.start, -1, RelativePosition.AHEAD_SAME_LANE, target.quote)
         behind_here = (
             best is not None and best[2] is RelativePosition.BEHIND_SAME_LANE and best[0] >= start
         )
-        if (
-            target
-            and lane_side
-            and (best is None or start + target.start() < best[0] or behind_here)
-        ):
+        if target and lane_side and (best is None or target.start < best[0] or behind_here):
             position = (
                 RelativePosition.ADJACENT_LANE_LEFT
                 if lane_side.value == "left"
                 else RelativePosition.ADJACENT_LANE_RIGHT
             )
-            best = (
-                start + target.start(),
-                -1,
-                position,
-                f"{lane_side.quote} ... {target.group(0)}",
-            )
+            best = (target.start, -1, position, f"{lane_side.quote} ... {target.quote}")
     if best is None:
         return None
     return GroundedFact(
@@ -300,29 +279,24 @@ def _subject(cast: Cast, position: int) -> Mention | str | None:
     return cast.subject_before(position)
 
 
-# "The ego overtakes a slow truck": the ego pulls out to the left past a vehicle ahead in its
-# lane (right-hand traffic), unless other words give its lane change; overtaking through the
-# oncoming lane is a bypass.
-_EGO_OVERTAKES = re.compile(r"\bovertak(?:es|ing|e)\b(?! (?:it|the ego|the av)\b)", re.I)
-_THROUGH_ONCOMING = re.compile(
-    r"\b(?:oncoming|opposite|opposing) lane\b|\bother side of the road\b|\bwrong side\b", re.I
-)
-
-
 def read_ego_overtaking(reading: Reading) -> None:
     """An ego that overtakes the adversary changes lanes to the left, from behind it in the
-    same lane; only where no other words give the ego's maneuver or the adversary's start."""
+    same lane (right-hand traffic); only where no other words give the ego's maneuver or the
+    adversary's start. Overtaking through the oncoming lane is a bypass."""
     adversary = reading.adversary
     if adversary is None or adversary.cls not in VEHICLE_CLASSES:
         return
     if "ego_maneuver" in reading.facts:
         return
     text = reading.cast.text
-    for match in _EGO_OVERTAKES.finditer(text):
-        if _subject(reading.cast, match.start()) != "ego":
+    book = rulebook()
+    for match in book.hits(Fact.EGO_OVERTAKES, text):
+        if _subject(reading.cast, match.start) != "ego":
             continue
-        quote = match.group(0)
-        through = _THROUGH_ONCOMING.search(text, match.start(), sentence_end(text, match.start()))
+        quote = match.quote
+        through = book.first(
+            Fact.THROUGH_ONCOMING, text, match.start, sentence_end(text, match.start)
+        )
         if through is not None:  # around it on the other side of the road: a bypass
             reading.facts.setdefault(
                 "ego_plan",
@@ -330,7 +304,7 @@ def read_ego_overtaking(reading: Reading) -> None:
                     name="ego_plan",
                     value=EgoPlan.BYPASS.value,
                     source=FactSource.TEXT,
-                    quote=f"{quote} ... {through.group(0)}",
+                    quote=f"{quote} ... {through.quote}",
                 ),
             )
             return
@@ -398,36 +372,17 @@ def read_maneuvers(reading: Reading) -> None:
         )
 
 
-# "approaching from behind on the AV's right", "coming up behind", "overtakes": the adversary
-# starts behind the ego; "from behind a parked van" is where it hides, not where it starts.
-_FROM_BEHIND = re.compile(
-    r"\b(?:from behind(?!\s+(?:a|an|the|some)\s+(?!ego\b|av\b))|(?:coming|came|comes) up "
-    r"behind|from the rear|approach\w* from (?:behind|the rear)|overtak\w+|undertak\w+)",
-    re.I,
-)
-# "merged into its lane ahead of it": it ends up in front of the ego.
-_AHEAD_OF_EGO = re.compile(r"\b(?:ahead of|in front of) (?:it|the ego|the av)\b", re.I)
-# The crossing of the street a turning ego enters ("in the crosswalk of the street it enters").
-_EXIT_STREET = re.compile(
-    r"\b(?:street|road|crosswalk|crossing)\b[^.;]{0,30}?\b(?:it|the ego|the av) (?:enters|is "
-    r"entering|entered|(?:turns|is turning|turned) (?:into|onto))\b|\bthe side (?:street|road)\b",
-    re.I,
-)
-_FAR_CORNER = re.compile(
-    r"\b(?:far|opposite) (?:corner|kerb|curb)\b|\bfar side of the (?:street|road|crossing|"
-    r"crosswalk)\b",
-    re.I,
-)
-_CROSSES = re.compile(r"\bcross\w*|\bcrosswalk\b|\bzebra\b", re.I)
 _ONTO_STREET = re.compile(rf"\b(?:onto|into) ({_STREET})")
 
 
-def _exit_street_named(cast: Cast, words: str) -> re.Match[str] | None:
+def _exit_street_named(cast: Cast, words: str) -> str | None:
     """ "the AV was turning right ... onto Tamsin Street when a pedestrian entered the
-    crosswalk on Tamsin Street": the street the ego turns onto, named in the actor's words."""
+    crosswalk on Tamsin Street": the street the ego turns onto, named in the actor's words.
+    Code, not a rule: a street's name is a capitalised word, and patterns ignore case."""
     for onto in _ONTO_STREET.finditer(cast.text):
         if _subject(cast, onto.start()) == "ego":
-            return re.search(rf"\b(?:on|across|of) {re.escape(onto.group(1))}", words)
+            named = re.search(rf"\b(?:on|across|of) {re.escape(onto.group(1))}", words)
+            return named.group(0) if named else None
     return None
 
 
@@ -444,14 +399,18 @@ def read_start_detail(reading: Reading) -> None:
         EgoManeuver.TURN_LEFT.value: RelativePosition.ROADSIDE_LEFT,
     }.get(ego.value if ego else "")
     walker = adversary.cls in ("Pedestrian", "Bicycle")
+    book = rulebook()
+    text = cast.text
     for start, end in words_of(cast, adversary):
-        words = cast.text[start:end]
+        words = text[start:end]
         if turn is not None and walker:
-            far = _FAR_CORNER.search(words)
-            exit_words = far or _EXIT_STREET.search(words) or _exit_street_named(cast, words)
-            if exit_words is not None and (far or _CROSSES.search(words)):
+            far = book.first(Fact.FAR_CORNER, text, start, end)
+            street = book.first(Fact.EXIT_STREET, text, start, end)
+            quote = (
+                far.quote if far else street.quote if street else _exit_street_named(cast, words)
+            )
+            if quote is not None and (far or book.first(Fact.CROSSES, text, start, end)):
                 detail = StartDetail.EXIT_FAR_CORNER if far else StartDetail.EXIT_CROSSING
-                quote = exit_words.group(0)
                 reading.facts["start_detail"] = GroundedFact(
                     name="start_detail", value=detail.value, source=FactSource.TEXT, quote=quote
                 )
@@ -464,22 +423,25 @@ def read_start_detail(reading: Reading) -> None:
                         quote=quote,
                     )
                 return
-        ahead = _AHEAD_OF_EGO.search(words)
-        if ahead is not None and not _FROM_BEHIND.search(words[: ahead.start()]):
+        # "merged into its lane ahead of it": it ends up in front of the ego, unless it came
+        # from behind first; "approaching from behind on the AV's right", "overtakes": it
+        # starts behind the ego ("from behind a parked van" is where it hides instead).
+        ahead = book.first(Fact.AHEAD_OF_EGO, text, start, end)
+        if ahead is not None and not book.first(Fact.FROM_BEHIND, text, start, ahead.start):
             reading.facts["start_detail"] = GroundedFact(
                 name="start_detail",
                 value=StartDetail.AHEAD.value,
                 source=FactSource.TEXT,
-                quote=ahead.group(0),
+                quote=ahead.quote,
             )
             return
-        behind = _FROM_BEHIND.search(cast.text[start : end + 40])
-        if behind is not None and behind.end() <= len(words):
+        behind = book.first(Fact.FROM_BEHIND, text, start, end + 40)
+        if behind is not None and behind.end <= end:
             reading.facts["start_detail"] = GroundedFact(
                 name="start_detail",
                 value=StartDetail.FROM_BEHIND.value,
                 source=FactSource.TEXT,
-                quote=behind.group(0),
+                quote=behind.quote,
             )
             return
 
@@ -559,9 +521,6 @@ _CLASS_TYPE = {
     "Bicycle": AdversaryType.BICYCLE,
     "Pedestrian": AdversaryType.PEDESTRIAN,
 }
-_BACKGROUND = re.compile(
-    r"\b(?:parked|hides?|hidden|blocking the view|occlud\w*|standing at a bus stop)\b", re.I
-)
 
 
 def adversary_type_of(cls: str) -> AdversaryType | None:
@@ -583,8 +542,8 @@ def choose_adversary(cast: Cast, quote: str | None) -> Mention | None:
                 return named[0]
     road_users = [m for m in cast.others if m.cls in _CLASS_TYPE]
     for mention in road_users:
-        words = " ".join(cast.text[a:b] for a, b in words_of(cast, mention))
-        if not _BACKGROUND.search(words):
+        stretches = words_of(cast, mention)
+        if not any(rulebook().first(Fact.BACKGROUND, cast.text, a, b) for a, b in stretches):
             return mention
     return road_users[0] if road_users else None
 
@@ -625,13 +584,6 @@ def read_description(description: str, adversary_quote: str | None = None) -> Re
     return reading
 
 
-_SIGNAL_WORDS = re.compile(
-    r"\b(?:red light|traffic lights?|signali[sz]ed|signals?\b(?! (?:left|right))|"
-    r"stop sign|green light)\b",
-    re.I,
-)
-
-
 def read_road(reading: Reading) -> None:
     """The road type: a mid-block location is an ordinary road; else the road words in the
     rules' order, where a plain road or street gives way to a turn (a junction), a vehicle
@@ -666,23 +618,30 @@ def read_road(reading: Reading) -> None:
         and adversary.cls in VEHICLE_CLASSES
     ):  # a vehicle cannot come from the side on an open road
         return told(RoadType.INTERSECTION.value, position.quote)
-    signal = _SIGNAL_WORDS.search(text)
+    signal = rulebook().first(Fact.TRAFFIC_CONTROL, text)
     if signal is not None:
-        return told(RoadType.INTERSECTION.value, signal.group(0))
+        return told(RoadType.INTERSECTION.value, signal.quote)
     if found is not None:
         return told(found.value, found.quote)
     return None
 
 
 def read_facts(description: str) -> dict[str, dict[str, str]]:
-    """Every fact the rules read from `description`, by whom: "ego", "scene", and each
-    other actor by its quote. What a rule's examples are checked against
+    """Every fact the rules read from `description`, by whom: "ego", "scene" (with
+    "requirement.KIND" for each requirement its words state), and each other actor by its
+    quote (with its role unless it is the adversary). What a rule's examples are checked against
     (tests/language/test_rule_examples.py)."""
+    from arise.generate.actors import read_actor  # it reads with this module's readers
+
     reading = read_description(description)
     cast = reading.cast
     found: dict[str, dict[str, str]] = {"ego": {}, "scene": {}}
+    for hit in rulebook().hits(Fact.REQUIREMENT, description):
+        found["scene"][f"requirement.{hit.value}"] = "true"
     for mention in cast.others:
         facts: dict[str, str] = {"class": mention.cls.value, "count": str(mention.count)}
+        if mention is not reading.adversary:
+            facts["role"] = read_actor(cast, mention).role.value
         position = read_compass(cast, mention) or read_position(cast, mention)
         if position is not None:
             facts[Fact.START.value] = position.value
@@ -713,4 +672,6 @@ def read_facts(description: str) -> dict[str, dict[str, str]]:
         for name in ("adversary_maneuver", "start_detail"):
             if name in reading.facts:
                 adversary[name] = reading.facts[name].value
+        if "spawn_position" in reading.facts:  # after the readers of the whole scene
+            adversary[Fact.START.value] = reading.facts["spawn_position"].value
     return found

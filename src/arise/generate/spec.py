@@ -7,7 +7,6 @@ at the boundary instead of deep in the assembler.
 
 from __future__ import annotations
 
-from enum import StrEnum
 from typing import Any
 
 from pydantic import BaseModel, Field, field_validator
@@ -23,6 +22,7 @@ from arise.vocabulary import (
     EgoManeuver,
     EgoPlan,
     RelativePosition,
+    RequirementKind,
     RoadType,
     Side,
     StartDetail,
@@ -42,16 +42,6 @@ __all__ = [
     "RoadType",
     "ScenarioSpec",
 ]
-
-
-class RequirementKind(StrEnum):
-    VISIBLE_AT_START = "visible_at_start"
-    NOT_VISIBLE_AT_START = "not_visible_at_start"
-    DISTANCE_AT_START = "distance_at_start"
-    EVENTUALLY_CLOSE = "eventually_close"
-    IN_INTERSECTION = "in_intersection"
-    SAME_DIRECTION = "same_direction"
-    OPPOSITE_DIRECTION = "opposite_direction"
 
 
 class Requirement(BaseModel):

@@ -8,6 +8,8 @@ A pattern is words separated by spaces, matched as whole words, case aside:
 - ``left|right``: one of these words;
 - ``the?``: the word, or nothing;
 - ``~``: any one word; ``~?``: any one word, or nothing;
+- ``#``: a number ("30", "2.5"); the word after it may be joined to it (``# m`` matches
+  "20 m" and "20m"), and a unit may hang on it ("within #" matches "within 2m");
 - ``!left|right`` (last only): not followed by one of these words;
 - ``...``: up to eight words in between, within the sentence;
 - ``<side>``: a named slot, one of the words of the lexicon class ``side``; a rule's facts
@@ -32,6 +34,8 @@ _GAP = r"(?:\s*,\s*|[\s-]+)"
 #: `...`: up to eight words, within the sentence.
 _SKIP = rf"(?:[\w'-]+{_GAP}){{0,8}}?"
 _WORD = re.compile(r"^[a-z0-9'][a-z0-9'-]*\*?$")
+#: `#`: a number, with a unit joined to it or not ("20", "2.5", "20m").
+_NUMBER = r"\d+(?:\.\d+)?[a-z]*"
 
 
 def _word(item: str) -> str:
@@ -66,6 +70,8 @@ def compile_pattern(pattern: str, classes: Mapping[str, tuple[str, ...]]) -> re.
             continue
         if core == "~":
             piece = r"[\w'-]+"
+        elif core == "#":
+            piece = _NUMBER
         elif core.startswith("<") and core.endswith(">"):
             name = core[1:-1]
             if name not in classes:
@@ -84,12 +90,13 @@ def compile_pattern(pattern: str, classes: Mapping[str, tuple[str, ...]]) -> re.
     body = ""
     for index, (piece, optional) in enumerate(pieces):
         last = index == len(pieces) - 1
+        gap = f"(?:{_GAP})?" if piece == _NUMBER else _GAP  # "20m": a unit joined to it
         if piece == _SKIP:
             body += piece  # it takes its own gaps
         elif not optional:
-            body += piece if last else piece + _GAP
+            body += piece if last else piece + gap
         elif not last:
-            body += f"(?:{piece}{_GAP})?"
+            body += f"(?:{piece}{gap})?"
         else:  # an optional last word hangs on the separator before it
             body = body.removesuffix(_GAP) + f"(?:{_GAP}{piece})?"
     try:

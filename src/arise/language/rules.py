@@ -34,7 +34,7 @@ from pydantic import BaseModel, ConfigDict, Field, ValidationError, field_valida
 from arise.language.errors import RuleError
 from arise.language.lexicon import lexicon
 from arise.language.patterns import compile_pattern
-from arise.vocabulary import EgoPlan, RelativePosition, RoadType, StartDetail
+from arise.vocabulary import EgoPlan, RelativePosition, RequirementKind, RoadType, StartDetail
 
 
 class Fact(StrEnum):
@@ -57,6 +57,24 @@ class Fact(StrEnum):
     CONTACT = "contact"  # where the ego was touched: front, rear, left, right, ...
     IMPLIED = "implied"  # an actor the words imply without naming it (an ActorRole)
     SIGNAL = "signal"  # which side a road user signalled to
+    TARGET_LANE = "target_lane"  # the lane the ego moves into ("a van coming up in that lane")
+    BARE_SIDE = "bare_side"  # "on the right" alone: a lane for a vehicle, the roadside for a walker
+    EGO_BEHIND = (
+        "ego_behind"  # the ego's verb right before an actor puts it ahead ("following a van")
+    )
+    BETWEEN = "between"  # squeezed between the ego and something on a side
+    EGO_OVERTAKES = "ego_overtakes"  # the ego overtakes (a lane change to the left)
+    THROUGH_ONCOMING = "through_oncoming"  # around it through the oncoming lane (a bypass)
+    FROM_BEHIND = "from_behind"  # the actor comes up from behind (StartDetail.FROM_BEHIND)
+    AHEAD_OF_EGO = "ahead_of_ego"  # the actor ends up ahead of the ego (StartDetail.AHEAD)
+    EXIT_STREET = "exit_street"  # the street (or its crossing) a turning ego enters
+    FAR_CORNER = "far_corner"  # the far corner of that street's crossing
+    CROSSES = "crosses"  # words of crossing a street ("crosses", "on the crosswalk")
+    BACKGROUND = "background"  # the actor is scenery (parked, hiding something), not the adversary
+    TRAFFIC_CONTROL = "traffic_control"  # lights or signs: a junction, when nothing else says
+    ROLE_CUE = "role_cue"  # what an actor besides the adversary is for: occluder, waits, ...
+    HIDES_BEHIND = "hides_behind"  # words right before a thing that put someone behind it
+    REQUIREMENT = "requirement"  # a constraint the text states (a RequirementKind)
 
 
 class Target(StrEnum):
@@ -165,6 +183,9 @@ RULE_FILES = (
     "scene.yaml",
     "weather.yaml",
     "contact.yaml",
+    "cues.yaml",
+    "roles.yaml",
+    "requirements.yaml",
 )
 
 
@@ -202,6 +223,27 @@ def _values(fact: Fact) -> frozenset[str] | None:
         Fact.CONTACT: frozenset({"rear", "front", "left", "right"}),
         Fact.SIGNAL: frozenset({"left", "right"}),
         Fact.IMPLIED: frozenset({"oncoming", "crossing", "obstacle"}),
+        Fact.BARE_SIDE: frozenset({"left", "right"}),
+        Fact.BETWEEN: frozenset({"left", "right"}),
+        Fact.ROLE_CUE: frozenset({"occluder", "waits", "parked", "follows", "slow"}),
+        Fact.REQUIREMENT: frozenset(RequirementKind),
+        **{
+            fact: frozenset({"true"})
+            for fact in (
+                Fact.TARGET_LANE,
+                Fact.EGO_BEHIND,
+                Fact.EGO_OVERTAKES,
+                Fact.THROUGH_ONCOMING,
+                Fact.FROM_BEHIND,
+                Fact.AHEAD_OF_EGO,
+                Fact.EXIT_STREET,
+                Fact.FAR_CORNER,
+                Fact.CROSSES,
+                Fact.BACKGROUND,
+                Fact.TRAFFIC_CONTROL,
+                Fact.HIDES_BEHIND,
+            )
+        },
     }
     return allowed.get(fact)
 
