@@ -157,3 +157,16 @@ def test_the_scripts_own_ego_behavior_still_sets_its_light_while_idm_drives(
         assert _ego(facts).behavior == "IdmAgent"
         assert _crossed(_ego(facts), light.stop_line) is not None
         assert min(p.speed for p in _ego(facts).trajectory[60:]) > 6.0
+
+
+def test_a_users_agent_is_confined_once_the_script_may_run() -> None:
+    name = f"{USER_AGENT}:ReadsLate"
+    with WorkerPool(size=1, agent=name) as pool:
+        result = check(CROSSING, CheckOptions(seed=3, agent=name), pool=pool)
+    assert result.sandbox is not None
+    if not result.sandbox.full:
+        pytest.skip(f"confinement incomplete here ({result.sandbox.label})")
+    # Imported before confinement, it drives; its own file, read after, is out of reach.
+    assert not result.ok and result.diagnostic is not None
+    assert result.diagnostic.error_type == "AgentError"
+    assert "PermissionError" in result.diagnostic.message
