@@ -17,9 +17,9 @@ import sys
 from pathlib import Path
 
 from arise.evaluate.fidelity import DEVSET_DIR, load_devset
-from arise.generate.condense import condense
 from arise.generate.grounding import ground
 from arise.generate.spec import ExtractionAnswer
+from arise.language.condense import condense
 
 NEUTRAL = ExtractionAnswer.model_validate(
     {

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from arise.generate.condense import condense
+from arise.language.condense import condense
 
 REPORT = (
     "On October 9, 2026 at 7:15 AM, the AV was travelling westbound on Brill Road at "

@@ -5,12 +5,12 @@ from __future__ import annotations
 
 import pytest
 
-from arise.generate.readers import read_description
 from arise.generate.retrieve import PLAN_TAGS, retrieve
 from arise.generate.spec import ScenarioSpec
 from arise.kb.loader import KnowledgeBase, load_kb
 from arise.kb.retrieval import BM25Retriever
 from arise.kb.schema import Component
+from arise.language.readers import read_description
 from arise.maps.registry import MapRegistry
 from arise.vocabulary import EgoPlan
 

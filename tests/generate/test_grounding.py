@@ -7,13 +7,13 @@ from __future__ import annotations
 
 import pytest
 
-from arise.generate.facts import FactSource
 from arise.generate.grounding import ground
-from arise.generate.quotes import find_quote, quote_in
-from arise.generate.readers import read_description
 from arise.generate.spec import ExtractionAnswer
-from arise.generate.weather_words import read_weather
 from arise.language.cast import read_cast
+from arise.language.facts import FactSource
+from arise.language.quotes import find_quote, quote_in
+from arise.language.readers import read_description
+from arise.language.weather import read_weather
 from arise.vocabulary import AdversaryManeuver, AdversaryType, EgoManeuver, RelativePosition
 
 

@@ -14,9 +14,9 @@ import pytest
 
 from arise.evaluate.fidelity import Start, placement, start_matches
 from arise.generate.conformity import find_adversary
-from arise.generate.readers import read_description
 from arise.generate.spec import Actor, ScenarioSpec
 from arise.kb.loader import KnowledgeBase, load_kb
+from arise.language.readers import read_description
 from arise.maps.registry import MapRegistry
 from arise.validate import WorkerPool
 from arise.vocabulary import ActorRole, RelativePosition, StartDetail

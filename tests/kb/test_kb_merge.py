@@ -15,12 +15,12 @@ from scenic.domains.driving.roads import Lane, Maneuver, Network
 
 from arise.generate.assemble import assemble
 from arise.generate.conformity import check_conformity, find_adversary
-from arise.generate.readers import read_description
 from arise.generate.retrieve import retrieve
 from arise.generate.spec import ExtractionAnswer, ScenarioSpec
 from arise.kb.compose import compose, pick_map
 from arise.kb.loader import KnowledgeBase, load_kb
 from arise.kb.retrieval import BM25Retriever
+from arise.language.readers import read_description
 from arise.maps.features import on_ramp_merges
 from arise.maps.registry import MapRegistry
 from arise.validate import CheckOptions, CheckResult, WorkerPool, check_text

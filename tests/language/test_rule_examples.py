@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import pytest
 
-from arise.generate.readers import read_facts
+from arise.language.examples import read_facts
 from arise.language.rules import Example, Rule, rulebook
 
 CASES = [

@@ -6,9 +6,9 @@ import json
 import re
 from dataclasses import dataclass, field
 
-from arise.generate.condense import condense
 from arise.generate.grounding import ground
 from arise.generate.spec import ExtractionAnswer, ScenarioSpec
+from arise.language.condense import condense
 from arise.llm.base import BaseProvider
 from arise.llm.types import Message
 from arise.prompts import load, load_jsonl

@@ -3,7 +3,7 @@
 The model proposes; the description decides. Each fact the spec carries says where it came
 from (`FactSource`):
 
-- TEXT: a fixed rule read it from the description's words (`readers`, `weather_words`, the rules of `arise.language`),
+- TEXT: a fixed rule read it from the description's words (`arise.language`: its readers, weather words and rules),
   attributed to the actor the words are about;
 - MODEL: the model's answer, kept with a quote that is really in the description;
 - GUESS: the model's answer with no words behind it (kept where something is needed,
@@ -17,18 +17,24 @@ A quote that is not in the description is rejected mechanically, whatever the mo
 from __future__ import annotations
 
 import re
-from dataclasses import dataclass
+from dataclasses import asdict, dataclass
 
-from arise.generate.actors import read_actors
-from arise.generate.facts import FactSource, GroundedFact
-from arise.generate.quotes import quote_in
-from arise.generate.readers import (
+from arise.generate.spec import (
+    Actor,
+    ExtractionAnswer,
+    Requirement,
+    RequirementKind,
+    ScenarioSpec,
+)
+from arise.language.actors import read_actors
+from arise.language.facts import FactSource, GroundedFact
+from arise.language.quotes import quote_in
+from arise.language.readers import (
     Reading,
     adversary_type_of,
     read_description,
     words_of,
 )
-from arise.generate.spec import ExtractionAnswer, Requirement, RequirementKind, ScenarioSpec
 from arise.language.rules import Fact, rulebook
 from arise.vocabulary import (
     ActorClass,
@@ -239,7 +245,7 @@ def ground(description: str, answer: ExtractionAnswer) -> Grounded:
         ego_lane_side=Side(facts["ego_lane_side"].value) if "ego_lane_side" in facts else None,
         no_adversary=no_adversary,
         participants=participants,
-        actors=read_actors(reading),
+        actors=[Actor(**asdict(actor)) for actor in read_actors(reading)],
         weather=facts["weather"].value,
         weather_parameters=reading.weather.parameters if reading.weather else None,
         requirements=requirements,

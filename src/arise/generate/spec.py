@@ -11,7 +11,7 @@ from typing import Any
 
 from pydantic import BaseModel, Field, field_validator
 
-from arise.generate.facts import FactSource, GroundedFact
+from arise.language.facts import FactSource, GroundedFact
 from arise.vocabulary import (
     DEFAULT_WEATHER,
     WEATHER_PRESETS,

@@ -15,8 +15,8 @@ from typing import Any
 
 from pydantic import ValidationError
 
-from arise.generate.facts import GroundedFact
 from arise.generate.spec import Actor
+from arise.language.facts import GroundedFact
 from arise.present.source import FAILED_MARKER
 from arise.sections import find_sections, sections_by_line
 from arise.serve.safefs import EntryKind, Folder, Refused, parse_json

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from arise.generate.facts import FactSource, GroundedFact
+from arise.language.facts import FactSource, GroundedFact
 from arise.language.rules import Fact, Hit, rulebook
 from arise.vocabulary import DEFAULT_WEATHER, WEATHER_PRESETS
 from arise.weather import Light, Visibility, Weather, weather_for

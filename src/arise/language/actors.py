@@ -4,11 +4,15 @@ the adversary, with a role, a class, a count, a start and the words it rests on.
 Fixed readers, no model: the same per-actor readers as the adversary's (`readers`), each
 looking only at the words about that actor, so "a parked truck" on the right does not lend
 its side to the pedestrian. One actor per mention, in the order of `spec.participants`.
+The result is this layer's own `CastActor`; generate builds the spec's Actor from it.
 """
 
 from __future__ import annotations
 
-from arise.generate.readers import (
+from dataclasses import dataclass
+
+from arise.language.cast import Cast, Mention
+from arise.language.readers import (
     Reading,
     cue_before,
     moves,
@@ -17,10 +21,23 @@ from arise.generate.readers import (
     read_stationary,
     words_of,
 )
-from arise.generate.spec import Actor
-from arise.language.cast import Cast, Mention
 from arise.language.rules import Fact, rulebook
-from arise.vocabulary import ActorRole, RelativePosition
+from arise.vocabulary import ActorClass, ActorRole, RelativePosition
+
+
+@dataclass(frozen=True)
+class CastActor:
+    """One road user or object besides the ego (and the adversary, but for the rest of a
+    counted adversary), as the words give it; the fields are those of the spec's Actor."""
+
+    role: ActorRole
+    scenic_class: ActorClass
+    count: int = 1
+    count_stated: bool = True  # a number or one; False for a plural with no number
+    start: RelativePosition | None = None  # seen from the ego; None: not stated
+    stationary: bool = False
+    quote: str = ""  # the words of the description that name it
+
 
 _ROLE_OF_START: dict[RelativePosition, ActorRole] = {
     RelativePosition.ONCOMING: ActorRole.ONCOMING,
@@ -70,7 +87,7 @@ def _role(
     return ActorRole.LEAD
 
 
-def read_actor(cast: Cast, mention: Mention) -> Actor:
+def read_actor(cast: Cast, mention: Mention) -> CastActor:
     """One actor other than the adversary, from the words about it. Waiting or standing
     still, for an actor that is not the adversary (whose waiting is the calm before its
     move), means it stays put."""
@@ -92,7 +109,7 @@ def read_actor(cast: Cast, mention: Mention) -> Actor:
         start=start,
         stationary=stationary,
     )
-    return Actor(
+    return CastActor(
         role=role,
         scenic_class=mention.cls,
         count=mention.count,
@@ -103,19 +120,19 @@ def read_actor(cast: Cast, mention: Mention) -> Actor:
     )
 
 
-def read_actors(reading: Reading) -> list[Actor]:
+def read_actors(reading: Reading) -> list[CastActor]:
     """One actor per thing the description names other than the ego and the adversary, in
     the order of the spec's participants; then, when the text names the adversary with a
     count ("two pedestrians cross"), one more with role adversary for the others of them."""
     cast = reading.cast
-    found: list[Actor] = []
+    found: list[CastActor] = []
     adversary = reading.adversary
     for mention in cast.others:
         if mention is not adversary:
             found.append(read_actor(cast, mention))
     if adversary is not None and adversary.count > 1:
         found.append(
-            Actor(
+            CastActor(
                 role=ActorRole.ADVERSARY,
                 scenic_class=adversary.cls,
                 count=adversary.count - 1,

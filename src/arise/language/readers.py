@@ -10,9 +10,6 @@ from __future__ import annotations
 import re
 from dataclasses import dataclass, field
 
-from arise.generate.facts import FactSource, GroundedFact
-from arise.generate.quotes import find_quote
-from arise.generate.weather_words import WeatherReading, read_weather
 from arise.language.cast import (
     VEHICLE_CLASSES,
     Cast,
@@ -20,8 +17,11 @@ from arise.language.cast import (
     phrase_start,
     sentence_end,
 )
+from arise.language.facts import FactSource, GroundedFact
+from arise.language.quotes import find_quote
 from arise.language.reading import parse
 from arise.language.rules import Fact, Hit, rulebook
+from arise.language.weather import WeatherReading, read_weather
 from arise.vocabulary import (
     AdversaryManeuver,
     AdversaryType,
@@ -624,54 +624,3 @@ def read_road(reading: Reading) -> None:
     if found is not None:
         return told(found.value, found.quote)
     return None
-
-
-def read_facts(description: str) -> dict[str, dict[str, str]]:
-    """Every fact the rules read from `description`, by whom: "ego", "scene" (with
-    "requirement.KIND" for each requirement its words state), and each other actor by its
-    quote (with its role unless it is the adversary). What a rule's examples are checked against
-    (tests/language/test_rule_examples.py)."""
-    from arise.generate.actors import read_actor  # it reads with this module's readers
-
-    reading = read_description(description)
-    cast = reading.cast
-    found: dict[str, dict[str, str]] = {"ego": {}, "scene": {}}
-    for hit in rulebook().hits(Fact.REQUIREMENT, description):
-        found["scene"][f"requirement.{hit.value}"] = "true"
-    for mention in cast.others:
-        facts: dict[str, str] = {"class": mention.cls.value, "count": str(mention.count)}
-        if mention is not reading.adversary:
-            facts["role"] = read_actor(cast, mention).role.value
-        position = read_compass(cast, mention) or read_position(cast, mention)
-        if position is not None:
-            facts[Fact.START.value] = position.value
-        if read_stationary(cast, mention) is not None:
-            facts[Fact.STATIONARY.value] = "true"
-        found[mention.quote] = facts
-    names = {
-        "ego_maneuver": ("ego", "maneuver"),
-        "ego_lane_side": ("ego", Fact.LANE_SIDE.value),
-        "ego_plan": ("ego", Fact.EGO_PLAN.value),
-        "ego_stopped": ("ego", Fact.EGO_HELD.value),
-        "ego_on_ramp": ("ego", Fact.EGO_ON_RAMP.value),
-        "weather": ("scene", "weather"),
-        "road_type": ("scene", Fact.ROAD.value),
-    }
-    for name, fact in reading.facts.items():
-        if name in names:
-            who, key = names[name]
-            found[who][key] = fact.value
-    if reading.weather is not None:
-        if reading.weather.light is not None:
-            found["scene"][Fact.LIGHT.value] = reading.weather.light.value
-        if reading.weather.parameters is not None:
-            found["scene"][Fact.VISIBILITY.value] = reading.weather.visibility.value
-    if reading.adversary is not None:
-        adversary = found[reading.adversary.quote]
-        adversary["adversary"] = "true"
-        for name in ("adversary_maneuver", "start_detail"):
-            if name in reading.facts:
-                adversary[name] = reading.facts[name].value
-        if "spawn_position" in reading.facts:  # after the readers of the whole scene
-            adversary[Fact.START.value] = reading.facts["spawn_position"].value
-    return found
