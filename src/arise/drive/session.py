@@ -12,7 +12,6 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from arise.drive.agent_names import resolve_agent
-from arise.drive.prompts import GenerationPlanned, generate_prompts
 from arise.drive.records import DriveRecord
 from arise.drive.report import write_report
 from arise.drive.runner import (
@@ -27,7 +26,6 @@ from arise.drive.runner import (
 from arise.drive.sources import Scenarios, SourceKind, scenarios_of, source_kind
 from arise.drive.store import DATABASE, DriveStore
 from arise.errors import Interrupted
-from arise.generate.batch import BatchEvent, RunDone
 from arise.generate.options import GenerateOptions
 from arise.validate.types import confinement_summary
 
@@ -110,6 +108,9 @@ def scenarios_for(request: DriveRequest, emit: OnDriveEvent) -> Scenarios:
     """The scenarios to drive; a prompt file's are generated first."""
     if source_kind(request.target) is not SourceKind.PROMPTS:
         return scenarios_of(request.target)
+    # The generator (and its model stack) loads only for a prompt file.
+    from arise.drive.prompts import GenerationPlanned, generate_prompts
+    from arise.generate.batch import BatchEvent, RunDone
 
     def planned(event: GenerationPlanned) -> None:
         emit(Generating(event.todo, event.done))
