@@ -19,7 +19,7 @@ from pydantic import ValidationError
 
 from arise.agents.loader import AgentError, check_agent_spec
 from arise.atomic import write_bytes_atomic
-from arise.limits import MAX_AGENTS, MAX_STEPS
+from arise.limits import MAX_AGENTS, MAX_NAME, MAX_STEPS
 from arise.maps.registry import MapError, MapRegistry
 from arise.validate.carla_server import unreachable_reason
 from arise.validate.map_cache import MapPreparationError, prepare_map
@@ -141,7 +141,9 @@ def check(
             active.close()
     result = _accepted(raw, name, choice, info.model, options.png)
     if result.simulation is not None:  # who drove is the parent's to say, not the worker's
-        result.simulation.agent = asked_agent if options.agent is not None else None
+        # As the user named it; a path past the trace's bound keeps its end (file, class).
+        label = (asked_agent or "").strip()[-MAX_NAME:]
+        result.simulation.agent = label if options.agent is not None else None
     return result
 
 

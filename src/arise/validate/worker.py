@@ -45,6 +45,7 @@ from arise.agents.loader import (
 )
 from arise.agents.types import BuiltinAgent
 from arise.errors import AriseError
+from arise.limits import MAX_NAME
 from arise.validate.diagnostics import (
     from_exception,
     locate,
@@ -429,7 +430,7 @@ def _simulation_facts(simulation: Any) -> SimulationFacts:
         events=events,
         params=_scene_params(simulation.scene),
         route=getattr(simulation, "arise_route", None),
-        agent=driver.name if driver is not None else None,
+        agent=driver.name[-MAX_NAME:] if driver is not None else None,  # the parent renames it
         signals=signals.traces(steps) if signals is not None else [],
     )
 
