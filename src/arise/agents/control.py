@@ -90,11 +90,12 @@ class RoutePath:
         `near`, only segments within `window` metres of that station are searched (so a
         route that passes a point twice is not confused)."""
         best = (0.0, math.inf)
-        for i, (a, b) in enumerate(zip(self.points, self.points[1:], strict=False)):
-            if near is not None and (
-                self.stations[i + 1] < near - window or self.stations[i] > near + window
-            ):
-                continue
+        first, last = 0, len(self.points) - 1
+        if near is not None:  # only the segments within the window (the stations are sorted)
+            first = max(0, bisect_right(self.stations, near - window) - 1)
+            last = min(last, bisect_right(self.stations, near + window))
+        for i in range(first, last):
+            a, b = self.points[i], self.points[i + 1]
             ax, ay = a
             vx, vy = b[0] - ax, b[1] - ay
             length2 = vx * vx + vy * vy
