@@ -87,3 +87,12 @@ def test_route_path_projects_and_interpolates() -> None:
     assert path.point_at(15.0) == pytest.approx((5.0, 10.0))
     assert path.heading_at(5.0) == pytest.approx(0.0)  # north
     assert path.heading_at(15.0) == pytest.approx(-math.pi / 2)  # east
+
+
+def test_route_path_projects_near_the_last_station_on_a_route_that_doubles_back() -> None:
+    # Up 10 m, 1 m across, back down: (0.5, 2) is 0.5 m from both legs.
+    path = RoutePath([(0.0, 0.0), (0.0, 10.0), (1.0, 10.0), (1.0, 0.0)])
+    assert path.project(0.4, 2.0, near=1.0, window=5.0)[0] == pytest.approx(2.0)
+    assert path.project(0.4, 2.0, near=18.0, window=5.0)[0] == pytest.approx(19.0)
+    # Past the end the path goes on straight (down, along its last segment).
+    assert path.point_at(23.0) == pytest.approx((1.0, -2.0))
