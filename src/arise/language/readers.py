@@ -192,16 +192,11 @@ def read_position(cast: Cast, mention: Mention) -> GroundedFact | None:
 
 
 _COMPASS = {"north": 0, "east": 90, "south": 180, "west": 270}
-_BOUND = re.compile(
-    r"\b(north|east|south|west)(?:bound|ward)\b|\bfrom (?:north|east|south|west) to "
-    r"(north|east|south|west)\b",
-    re.I,
-)
 
 
-def _bearing(found: re.Match[str]) -> int:
-    word = found.group(1) or found.group(2)
-    return _COMPASS[word.lower()]
+def _heading(text: str, start: int, end: int) -> Hit | None:
+    """The first compass heading in text[start:end] (rules of `heading`)."""
+    return rulebook().first(Fact.HEADING, text, start, end)
 
 
 _STREET = r"[A-Z][a-z]+ (?:Avenue|Street|Road|Lane|Boulevard|Drive|Way|Place)"
@@ -229,18 +224,17 @@ def read_compass(cast: Cast, mention: Mention) -> GroundedFact | None:
     reports give them: the ego's bearing from its own words, the actor's from its words."""
     ego_bearing = None
     for span in cast.ego:
-        after = cast.text[span.end : span.end + 60]
-        found = _BOUND.search(after)
-        if found and not re.search(r"[.;]", after[: found.start()]):
-            ego_bearing = _bearing(found)
+        found = _heading(cast.text, span.end, span.end + 60)
+        if found and not re.search(r"[.;]", cast.text[span.end : found.start]):
+            ego_bearing = _COMPASS[found.value]
             break
     if ego_bearing is None:
         return None
     for start, end in words_of(cast, mention):
         words = cast.text[max(0, start - 15) : end]
-        bound = _BOUND.search(words)
+        bound = _heading(cast.text, max(0, start - 15), end)
         heading = (
-            (_bearing(bound), bound.group(0)) if bound else _side_road_bearing(cast.text, words)
+            (_COMPASS[bound.value], bound.quote) if bound else _side_road_bearing(cast.text, words)
         )
         if heading is None:
             continue

@@ -22,6 +22,7 @@ not editing code.
 from __future__ import annotations
 
 import re
+import string
 from collections.abc import Iterator
 from dataclasses import dataclass
 from enum import StrEnum
@@ -75,6 +76,7 @@ class Fact(StrEnum):
     ROLE_CUE = "role_cue"  # what an actor besides the adversary is for: occluder, waits, ...
     HIDES_BEHIND = "hides_behind"  # words right before a thing that put someone behind it
     REQUIREMENT = "requirement"  # a constraint the text states (a RequirementKind)
+    HEADING = "heading"  # a compass heading ("northbound", "from south to north")
 
 
 class Target(StrEnum):
@@ -227,6 +229,7 @@ def _values(fact: Fact) -> frozenset[str] | None:
         Fact.BETWEEN: frozenset({"left", "right"}),
         Fact.ROLE_CUE: frozenset({"occluder", "waits", "parked", "follows", "slow"}),
         Fact.REQUIREMENT: frozenset(RequirementKind),
+        Fact.HEADING: frozenset({"north", "east", "south", "west"}),
         **{
             fact: frozenset({"true"})
             for fact in (
@@ -252,8 +255,15 @@ def _check_value(rule: Rule, where: str) -> None:
     allowed = _values(rule.fact)
     if allowed is None:
         return
-    sides = lexicon().classes["side"]
-    values = {rule.value.format(side=side) for side in sides} if "{" in rule.value else {rule.value}
+    # A value that takes a slot's word ("adjacent_lane_{side}") is checked for every word of
+    # the slot's lexicon class.
+    slots = [name for _, name, _, _ in string.Formatter().parse(rule.value) if name]
+    classes = lexicon().classes
+    if any(slot not in classes for slot in slots):
+        raise RuleError(f"{where}: rule {rule.id}: its value names no lexicon class")
+    values = {rule.value}
+    for slot in slots:
+        values = {value.replace(f"{{{slot}}}", word) for value in values for word in classes[slot]}
     unknown = sorted(values - allowed)
     if unknown:
         raise RuleError(f"{where}: rule {rule.id}: {rule.fact} cannot be {unknown[0]!r}")
