@@ -25,6 +25,7 @@ from typing import Annotated, Protocol, runtime_checkable
 from pydantic import BaseModel, ConfigDict, Field, StringConstraints
 
 from arise.limits import MAX_EVENTS, MAX_MAGNITUDE, MAX_NAME, MAX_STEPS
+from arise.vocabulary import ActorClass, ActorGroup
 
 #: Points of a route's centreline (a few metres apart: 2,000 is several kilometres).
 MAX_ROUTE_POINTS = 2000
@@ -101,23 +102,12 @@ class SignalTrace(_Strict):
         return current
 
 
-class ActorClass(StrEnum):
-    """What another road user is, as an agent sees it."""
-
-    CAR = "car"
-    TRUCK = "truck"
-    BICYCLE = "bicycle"
-    MOTORCYCLE = "motorcycle"
-    PEDESTRIAN = "pedestrian"
-    OBJECT = "object"  # a prop: cone, barrier, debris, a parked trailer
-
-
 @dataclass(frozen=True, slots=True)
 class ActorView:
     """Another road user within the sensing radius, in ground truth."""
 
     name: str
-    cls: ActorClass
+    cls: ActorClass  # the Scenic class (Car, Van, Pedestrian, Cone, ...); see `group`
     x: float
     y: float
     heading: float
@@ -126,6 +116,11 @@ class ActorView:
     length: float
     # Centre to centre, metres.
     distance: float
+
+    @property
+    def group(self) -> ActorGroup:
+        """Vehicle, two-wheeler, walker or prop."""
+        return self.cls.group
 
 
 @dataclass(frozen=True, slots=True)

@@ -30,24 +30,18 @@ ROUTE_AHEAD = 60.0  # metres of route in each observation
 ROUTE_SPACING = 2.0  # metres between its points
 LIGHTS_AHEAD = 100.0  # metres along the route
 DEFAULT_SPEED_LIMIT = 50 / 3.6  # m/s, where the map gives none
-_CLASSES = {
-    "Truck": ActorClass.TRUCK,
-    "Bus": ActorClass.TRUCK,
-    "Bicycle": ActorClass.BICYCLE,
-    "Motorcycle": ActorClass.MOTORCYCLE,
-    "Pedestrian": ActorClass.PEDESTRIAN,
-    "Car": ActorClass.CAR,
-    "Van": ActorClass.CAR,
-    "Vehicle": ActorClass.CAR,
-}
 
 
 def actor_class(obj: Any) -> ActorClass:
-    """The class an agent sees, from the object's class or the nearest known base."""
+    """The class an agent sees: the object's class, or its nearest base that is one (a
+    subclass of Car is a Car, any other vehicle a Car); anything else a prop (Debris)."""
     for cls in type(obj).__mro__:
-        if cls.__name__ in _CLASSES:
-            return _CLASSES[cls.__name__]
-    return ActorClass.OBJECT
+        known = ActorClass.of(cls.__name__)
+        if known is not None:
+            return known
+        if cls.__name__ == "Vehicle":
+            return ActorClass.CAR
+    return ActorClass.DEBRIS
 
 
 class EgoDriver:
