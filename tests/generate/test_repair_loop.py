@@ -27,6 +27,7 @@ from arise.kb.schema import Component, Entry
 from arise.llm.types import ProviderUnavailable
 from arise.sections import section_body
 from arise.validate.types import Rejection, Stage
+from arise.vocabulary import ActorClass
 from tests.fakes import FakeValidator, ScriptedProvider, failed, passed
 
 DESCRIPTION = "A pedestrian crosses in front of the ego."
@@ -81,7 +82,7 @@ def setup(
         retrieval=retrieval,
         draft=draft,
         provider=provider,
-        rules=RuleContext(adversary_class="Pedestrian"),
+        rules=RuleContext(adversary_class=ActorClass.PEDESTRIAN),
         maps=MAPS,
     )
     return run, draft, context

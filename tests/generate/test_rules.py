@@ -21,6 +21,7 @@ from arise.generate.rules import (
 )
 from arise.validate import CheckOptions, Diagnostic, Stage, WorkerPool, check_text
 from arise.validate.types import Rejection
+from arise.vocabulary import ActorClass
 from tests.conftest import DATA
 
 BASE = (DATA / "base_crossing.scenic").read_text()
@@ -97,7 +98,7 @@ def _diagnostic(
 
 def test_placeholder_rule_fills_the_adversary_class_and_known_values() -> None:
     text = "adv = new {{ADVERSARY_CLASS}} at {{SPOT}}\nx = {{UNKNOWN}}\n"
-    context = RuleContext(adversary_class="Bicycle", placeholders={"SPOT": "p"})
+    context = RuleContext(adversary_class=ActorClass.BICYCLE, placeholders={"SPOT": "p"})
     fix = fix_placeholders(_diagnostic(), text, context)
     assert fix is not None and fix.rule == "placeholder"
     assert fix.text == "adv = new Bicycle at p\nx = {{UNKNOWN}}\n"
@@ -244,7 +245,7 @@ def test_forbidden_import_rule_removes_the_refused_line() -> None:
 def test_apply_rules_returns_the_first_rule_that_changes_the_text() -> None:
     text = "adv = new {{ADVERSARY_CLASS}}\nimport os\n"
     diagnostic = _diagnostic(Stage.GATE, "ForbiddenImport", "import of 'os' refused", line=2)
-    fix = apply_rules(diagnostic, text, RuleContext(adversary_class="Car"))
+    fix = apply_rules(diagnostic, text, RuleContext(adversary_class=ActorClass.CAR))
     assert fix is not None and fix.rule == "placeholder"
     assert (
         apply_rules(_diagnostic(Stage.SIMULATE, "TypeError", "odd"), "x = 1\n", RuleContext())

@@ -408,8 +408,10 @@ def _named_classes(spec: ScenarioSpec) -> set[ActorClass]:
 
 
 def _same_class(kind: str, named: ActorClass) -> bool:
-    """A trace agent of class `kind` is the thing named `named` (an NPCCar is a Car)."""
-    return kind == named or (kind == "NPCCar" and named == "Car")
+    """A trace agent of class `kind` (untrusted text) is the thing named `named` (an
+    NPCCar is a Car)."""
+    seen = ActorClass.of(kind)
+    return seen is named or (seen is ActorClass.NPC_CAR and named is ActorClass.CAR)
 
 
 def _describe_others(others: list[AgentTrace]) -> str:

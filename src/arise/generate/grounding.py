@@ -167,7 +167,7 @@ def ground(description: str, answer: ExtractionAnswer) -> Grounded:
             "adversary", "none (the description names no other road user)", FactSource.DEFAULT
         )
     if "spawn_position" not in facts:
-        if adversary_class == "Pedestrian" and answer.spawn_position not in _WALKER_STARTS:
+        if adversary_class is ActorClass.PEDESTRIAN and answer.spawn_position not in _WALKER_STARTS:
             # A walker does not start in a traffic lane: the near kerb, unless the text says.
             facts["spawn_position"] = _fact(
                 "spawn_position", RelativePosition.ROADSIDE_RIGHT.value, FactSource.DEFAULT

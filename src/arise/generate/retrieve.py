@@ -26,6 +26,7 @@ from arise.kb.schema import CONFLICT_ROUTE, Component, Entry
 from arise.kb.weather import weather_choice
 from arise.vocabulary import (
     POINT_CLASSES,
+    ActorClass,
     ActorRole,
     AdversaryManeuver,
     Approach,
@@ -670,7 +671,13 @@ ROLE_BEHAVIOR_TAGS: dict[ActorRole, frozenset[str]] = {
 STEADY_TAGS = frozenset({"steady", "cruise", "route"})
 #: Rough length of each class (metres): copies of a counted actor stand this far apart,
 #: plus a margin.
-CLASS_LENGTHS = {"Bus": 12.0, "Truck": 9.0, "Van": 6.0, "Car": 5.0, "Motorcycle": 2.5}
+CLASS_LENGTHS = {
+    ActorClass.BUS: 12.0,
+    ActorClass.TRUCK: 9.0,
+    ActorClass.VAN: 6.0,
+    ActorClass.CAR: 5.0,
+    ActorClass.MOTORCYCLE: 2.5,
+}
 COPY_MARGIN = 3.0
 
 

@@ -14,7 +14,13 @@ from dataclasses import dataclass, field
 
 from arise.validate.diagnostics import looks_like_scenic2
 from arise.validate.types import Diagnostic, Stage
-from arise.vocabulary import ACTOR_CLASSES, POINT_CLASSES, PROP_CLASSES, WEATHER_PRESETS
+from arise.vocabulary import (
+    ACTOR_CLASSES,
+    POINT_CLASSES,
+    PROP_CLASSES,
+    WEATHER_PRESETS,
+    ActorClass,
+)
 
 CLASS_NAMES = ACTOR_CLASSES + POINT_CLASSES + PROP_CLASSES
 
@@ -23,7 +29,7 @@ CLASS_NAMES = ACTOR_CLASSES + POINT_CLASSES + PROP_CLASSES
 class RuleContext:
     """What a rule may need beyond the script: the spec's choices and known defaults."""
 
-    adversary_class: str = "Car"
+    adversary_class: ActorClass = ActorClass.CAR
     param_defaults: dict[str, str] = field(default_factory=dict)
     placeholders: dict[str, str] = field(default_factory=dict)
     relaxed_lines: dict[int, int] = field(default_factory=dict)  # line -> times relaxed

@@ -80,7 +80,7 @@ def _role(
         return ActorRole.SLOW
     if start is RelativePosition.AHEAD_SAME_LANE:
         return ActorRole.LEAD
-    if cls == "Pedestrian":
+    if cls is ActorClass.PEDESTRIAN:
         return ActorRole.CROSSING
     if start in (RelativePosition.ROADSIDE_LEFT, RelativePosition.ROADSIDE_RIGHT):
         return ActorRole.PARKED

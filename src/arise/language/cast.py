@@ -281,9 +281,9 @@ def read_cast(text: str) -> Cast:
             index = found.index(earlier)
             found[index] = earlier.with_span(span)
             continue
-        plural = bool(_PLURAL.search(word)) and cls not in ("Bus", "Debris")
+        plural = bool(_PLURAL.search(word)) and cls not in (ActorClass.BUS, ActorClass.DEBRIS)
         counted = bool(count_match) or not (plural or _GROUP.search(before))
-        if count == 1 and plural and cls != "Pedestrian":
+        if count == 1 and plural and cls is not ActorClass.PEDESTRIAN:
             count = 2 if not count_match else count
         quote_start = phrase_start(text, start)
         found.append(
@@ -385,7 +385,7 @@ def _same_thing(
     for earlier in reversed(found):
         if earlier.cls == cls:
             return earlier
-        if generic_vehicle and earlier.cls in VEHICLE_CLASSES and cls == "Car":
+        if generic_vehicle and earlier.cls in VEHICLE_CLASSES and cls is ActorClass.CAR:
             return earlier
     return None
 

@@ -23,6 +23,7 @@ from arise.language.reading import parse
 from arise.language.rules import Fact, Hit, rulebook
 from arise.language.weather import WeatherReading, read_weather
 from arise.vocabulary import (
+    ActorClass,
     AdversaryManeuver,
     AdversaryType,
     EgoManeuver,
@@ -152,7 +153,7 @@ def read_position(cast: Cast, mention: Mention) -> GroundedFact | None:
         bare = rulebook().first(Fact.BARE_SIDE, cast.text, start, end)
         if bare and best is None:
             side = bare.value
-            walker = mention.cls in ("Pedestrian",) or mention.is_prop
+            walker = mention.cls.is_walker or mention.is_prop
             position = (
                 (
                     RelativePosition.ROADSIDE_LEFT
@@ -392,7 +393,7 @@ def read_start_detail(reading: Reading) -> None:
         EgoManeuver.TURN_RIGHT.value: RelativePosition.ROADSIDE_RIGHT,
         EgoManeuver.TURN_LEFT.value: RelativePosition.ROADSIDE_LEFT,
     }.get(ego.value if ego else "")
-    walker = adversary.cls in ("Pedestrian", "Bicycle")
+    walker = adversary.cls in (ActorClass.PEDESTRIAN, ActorClass.BICYCLE)
     book = rulebook()
     text = cast.text
     for start, end in words_of(cast, adversary):
@@ -506,19 +507,12 @@ def read_stationary(cast: Cast, mention: Mention) -> GroundedFact | None:
 
 # -- who is the adversary -------------------------------------------------------------------
 
-_CLASS_TYPE = {
-    "Car": AdversaryType.CAR,
-    "Van": AdversaryType.CAR,
-    "Truck": AdversaryType.TRUCK,
-    "Bus": AdversaryType.TRUCK,
-    "Motorcycle": AdversaryType.MOTORCYCLE,
-    "Bicycle": AdversaryType.BICYCLE,
-    "Pedestrian": AdversaryType.PEDESTRIAN,
-}
 
-
-def adversary_type_of(cls: str) -> AdversaryType | None:
-    return _CLASS_TYPE.get(cls)
+def adversary_type_of(cls: ActorClass) -> AdversaryType | None:
+    """The adversary type a road user of this class plays (a van a car, a bus a truck);
+    None for a prop."""
+    refined = cls.as_adversary
+    return next((kind for kind in AdversaryType if kind.scenic_class is refined), None)
 
 
 def choose_adversary(cast: Cast, quote: str | None) -> Mention | None:
@@ -528,13 +522,13 @@ def choose_adversary(cast: Cast, quote: str | None) -> Mention | None:
         span = find_quote(cast.text, quote)
         if span is not None:
             mention = cast.mention_at(*span)
-            if mention is not None and mention.cls in _CLASS_TYPE:
+            if mention is not None and adversary_type_of(mention.cls) is not None:
                 return mention
-            mentions = [m for m in cast.others if m.cls in _CLASS_TYPE]
+            mentions = [m for m in cast.others if adversary_type_of(m.cls) is not None]
             named = [m for m in mentions if re.search(rf"\b{re.escape(m.quote)}\b", quote, re.I)]
             if named:
                 return named[0]
-    road_users = [m for m in cast.others if m.cls in _CLASS_TYPE]
+    road_users = [m for m in cast.others if adversary_type_of(m.cls) is not None]
     for mention in road_users:
         stretches = words_of(cast, mention)
         if not any(rulebook().first(Fact.BACKGROUND, cast.text, a, b) for a, b in stretches):
