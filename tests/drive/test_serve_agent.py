@@ -12,11 +12,11 @@ from fastapi.testclient import TestClient
 from arise.drive.report import TABLE
 from arise.llm.settings import Settings
 from arise.serve.app import create_app, guarded
+from arise.serve.checker import CheckStopped, held_request
 from arise.serve.config import ServeConfig
+from arise.serve.driving import admit_agent
 from arise.validate import WorkerPool
 from tests.conftest import EXAMPLES
-
-pytestmark = pytest.mark.slow
 
 SCRIPT = EXAMPLES / "pedestrian_crossing.scenic"
 
@@ -29,6 +29,7 @@ def client(tmp_path: Path, validator_pool: WorkerPool) -> Iterator[TestClient]:
         yield test_client
 
 
+@pytest.mark.slow
 def test_a_script_driven_by_an_agent_comes_with_its_metrics(client: TestClient) -> None:
     agents = [a["name"] for a in client.get("/api/info").json()["agents"]]
     assert agents == ["scripted", "idm", "cautious", "blind"]
@@ -46,6 +47,7 @@ def test_a_script_driven_by_an_agent_comes_with_its_metrics(client: TestClient) 
     assert plain["ok"] and plain["driving"] is None
 
 
+@pytest.mark.slow
 def test_the_server_offers_built_in_agents_only(client: TestClient, tmp_path: Path) -> None:
     agent_file = tmp_path / "agent.py"
     agent_file.write_text("raise SystemExit('imported!')\n")
@@ -55,3 +57,23 @@ def test_the_server_offers_built_in_agents_only(client: TestClient, tmp_path: Pa
         assert answer.status_code == 422
         assert answer.json()["error"].startswith(f"unknown agent '{name[:64]}'")
         assert "scripted, idm, cautious, blind" in answer.json()["error"]
+
+
+def test_the_check_process_cannot_choose_the_agent() -> None:
+    """The server holds the check process's run request to the agent it admitted: a
+    process that asks for a user's file (or none) runs with the server's choice."""
+    asked = {
+        "text": "ego = new Car\n",
+        "map": {"name": "arise_straight"},
+        "options": {"agent": "/tmp/evil.py:Agent", "require_sandbox": False},
+    }
+    held = held_request(asked, "ego = new Car\n", None, 30.0, "idm")
+    assert held["options"]["agent"] == "idm" and held["options"]["seed"] == 0
+    assert held_request(asked, "ego = new Car\n", None, 30.0)["options"]["agent"] is None
+    with pytest.raises(CheckStopped, match="another script"):
+        held_request(asked, "other script\n", None, 30.0, "idm")
+
+
+@pytest.mark.parametrize(("name", "admitted"), [(None, None), ("", None), (" blind ", "blind")])
+def test_admitted_agents(name: str | None, admitted: str | None) -> None:
+    assert admit_agent(name) == admitted
