@@ -420,19 +420,21 @@ def drive_missing(
     config: BenchConfig, store: BenchStore, out_root: Path, on_driven: OnRecord | None = None
 ) -> int:
     """Drive executed runs that the agent has not driven yet (a benchmark first run
-    without --agent, or with another one), in this process; each is saved at once."""
+    without --agent, or with another one), in this process on a pool of its own (nothing
+    is generated); each is saved at once."""
+    from arise.evaluate.driving import drive_run
+    from arise.validate import WorkerPool
+
     todo = undriven(config, store)
-    if not todo:
+    if not todo or config.agent is None:
         return 0
-    runner = TaskRunner(config.base, out_root, agent=config.agent)
-    try:
+    with WorkerPool(size=1, agent=config.agent) as pool:
         for record in todo:
-            record.driving = runner.drive(record)
+            options = task_options(config.base, record.task)
+            record.driving = drive_run(record, config.agent, options, pool)
             store.save(record)
             if on_driven:
                 on_driven(record)
-    finally:
-        runner.close()
     return len(todo)
 
 
