@@ -150,3 +150,13 @@ def test_a_bad_prompt_file_is_one_line(tmp_path: Path, text: str, message: str) 
     path.write_text(text)
     with pytest.raises(DriveSourceError, match=message):
         read_prompts(path)
+
+
+def test_a_folder_is_walked_to_a_bounded_depth(tmp_path: Path) -> None:
+    deep = tmp_path.joinpath(*[f"d{i}" for i in range(9)])
+    deep.mkdir(parents=True)
+    (deep / "far.scenic").write_text(SCRIPT)
+    (tmp_path / "d0" / "near.scenic").write_text(SCRIPT)
+    found = scenarios_of(tmp_path)
+    assert [s.id for s in found.items] == ["d0/near"]
+    assert any("deeper than 6 folders" in line for line in found.skipped)
