@@ -150,7 +150,7 @@ def _facts(*others: AgentTrace) -> SimulationFacts:
     )
 
 
-def _actors(participants: list[str]) -> list[Actor]:
+def actors_of(participants: list[str]) -> list[Actor]:
     """The actors the cast reads from each participant's words (the first thing named)."""
     found = []
     for words in participants:
@@ -169,7 +169,7 @@ def _actors(participants: list[str]) -> list[Actor]:
 
 def _found(participants: list[str], *others: AgentTrace) -> set[str]:
     spec = ScenarioSpec.model_validate(
-        {**SPEC, "participants": participants, "actors": _actors(participants)}
+        {**SPEC, "participants": participants, "actors": actors_of(participants)}
     )
     return {c.check for c in contradictions(check_conformity(spec, _facts(*others)))}
 
@@ -188,13 +188,13 @@ def _found(participants: list[str], *others: AgentTrace) -> set[str]:
 def test_the_cast_says_how_many_objects_a_participant_stands_for(
     words: str, most: int | None
 ) -> None:
-    assert actor_counts(_actors([words])) == (1, most)
+    assert actor_counts(actors_of([words])) == (1, most)
 
 
 def test_actor_counts_add_up_and_a_group_has_no_upper_bound() -> None:
     assert actor_counts([]) == (0, 0)
-    assert actor_counts(_actors(["a bus", "parked cars"])) == (2, None)
-    assert actor_counts(_actors(["a bus", "two cones"])) == (2, 3)
+    assert actor_counts(actors_of(["a bus", "parked cars"])) == (2, None)
+    assert actor_counts(actors_of(["a bus", "two cones"])) == (2, 3)
 
 
 def test_extra_actors_nobody_asked_for_are_a_contradiction() -> None:

@@ -21,6 +21,7 @@ from arise.kb.compose import pick_map
 from arise.kb.schema import Component, Entry
 from arise.validate import WorkerPool
 from tests.fakes import ScriptedProvider
+from tests.generate.test_semantic_gate import actors_of
 
 DESCRIPTION = "A pedestrian steps off the right sidewalk in front of the ego car."
 SPEC = {
@@ -59,7 +60,9 @@ def _run(
     retrieval = Retrieval(candidates={c: list(v) for c, v in chosen.items()}, chosen=chosen)
     retrieval.map_name = pick_map(retrieval.chosen_entries(), generator.maps)
     draft = assemble(retrieval, "Pedestrian", DESCRIPTION)
-    spec = ScenarioSpec.model_validate({**SPEC, "participants": participants})
+    spec = ScenarioSpec.model_validate(
+        {**SPEC, "participants": participants, "actors": actors_of(participants)}
+    )
     run = Generation(
         description=DESCRIPTION,
         options=generator.options,
