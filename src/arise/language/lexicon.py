@@ -13,6 +13,10 @@ import yaml
 from arise.language.errors import RuleError
 from arise.language.patterns import compile_pattern
 
+#: libyaml's safe loader when PyYAML has it (about 10x faster on our rule files), else
+#: the pure-Python one; both build plain data only.
+SAFE_LOADER: type[yaml.SafeLoader] = getattr(yaml, "CSafeLoader", yaml.SafeLoader)
+
 
 @dataclass(frozen=True)
 class Lexicon:
@@ -36,7 +40,7 @@ def _strings(data: Any, where: str) -> tuple[str, ...]:
 def lexicon() -> Lexicon:
     """The shipped lexicon; a malformed file is a RuleError naming the part."""
     text = resources.files("arise.language").joinpath("data/lexicon.yaml").read_text("utf-8")
-    data = yaml.safe_load(text)
+    data = yaml.load(text, Loader=SAFE_LOADER)
     if not isinstance(data, dict):
         raise RuleError("lexicon: not a mapping")
     classes = {name: _strings(words, f"classes.{name}") for name, words in data["classes"].items()}

@@ -32,7 +32,7 @@ from arise.language.errors import RuleError
 #: "ahead in" matches "ahead, in").
 _GAP = r"(?:\s*,\s*|[\s-]+)"
 #: `...`: up to eight words, within the sentence.
-_SKIP = rf"(?:[\w'-]+{_GAP}){{0,8}}?"
+_SKIP = r"(?:[\w'-]+(?:\s*,\s*|\s+)){0,8}?"  # no hyphen between: one way to split
 _WORD = re.compile(r"^[a-z0-9'][a-z0-9'-]*\*?$")
 #: `#`: a number, with a unit joined to it or not ("20", "2.5", "20m").
 _NUMBER = r"\d+(?:\.\d+)?[a-z]*"

@@ -30,10 +30,10 @@ from functools import cache
 from importlib import resources
 
 import yaml
-from pydantic import BaseModel, ConfigDict, Field, ValidationError, field_validator
+from pydantic import BaseModel, ConfigDict, Field, ValidationError
 
 from arise.language.errors import RuleError
-from arise.language.lexicon import lexicon
+from arise.language.lexicon import SAFE_LOADER, lexicon
 from arise.language.patterns import compile_pattern
 from arise.vocabulary import EgoPlan, RelativePosition, RequirementKind, RoadType, StartDetail
 
@@ -103,13 +103,6 @@ class Rule(BaseModel):
     when: list[str] = Field(min_length=1)
     unless: list[str] = Field(default_factory=list)
     examples: list[Example] = Field(min_length=1)
-
-    @field_validator("when", "unless")
-    @classmethod
-    def _patterns_compile(cls, patterns: list[str]) -> list[str]:
-        for pattern in patterns:
-            compile_pattern(pattern, lexicon().classes)
-        return patterns
 
 
 @dataclass(frozen=True)
@@ -193,7 +186,7 @@ RULE_FILES = (
 
 def load_rules(text: str, where: str) -> list[Rule]:
     """The rules of one file's text; a malformed rule is a RuleError naming it."""
-    data = yaml.safe_load(text)
+    data = yaml.load(text, Loader=SAFE_LOADER)
     if not isinstance(data, list):
         raise RuleError(f"{where}: a rule file is a list of rules")
     rules = []
@@ -285,12 +278,10 @@ def rulebook() -> RuleBook:
             classes = lexicon().classes
             order = counts.get(rule.fact, 0)
             counts[rule.fact] = order + 1
-            compiled.append(
-                CompiledRule(
-                    rule=rule,
-                    when=tuple(compile_pattern(p, classes) for p in rule.when),
-                    unless=tuple(compile_pattern(p, classes) for p in rule.unless),
-                    order=order,
-                )
-            )
+            try:
+                when = tuple(compile_pattern(p, classes) for p in rule.when)
+                unless = tuple(compile_pattern(p, classes) for p in rule.unless)
+            except RuleError as error:
+                raise RuleError(f"{name}: rule {rule.id}: {error}") from error
+            compiled.append(CompiledRule(rule=rule, when=when, unless=unless, order=order))
     return RuleBook(tuple(compiled))
