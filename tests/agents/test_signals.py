@@ -84,6 +84,23 @@ def test_a_light_a_script_sets_holds_and_switches_its_junction() -> None:
     assert model.state(entry["road3"], 60) is LightState.GREEN
 
 
+def test_two_approaches_set_red_at_one_step_both_stay_red() -> None:
+    """An adversary sets its light red to run it, and the ego sets its own red too: what a
+    script set on an approach beats what the other set implied for it (an all-red junction)."""
+    model = SignalModel(_network("arise_intersection4"), timestep=0.1)
+    entry = {a.id.split("/")[-1]: a for a in model.approaches}
+    model.hold(entry["road4"], "red", 0)
+    model.hold(entry["road1"], "red", 0)
+    assert model.state(entry["road4"], 10) is LightState.RED
+    assert model.state(entry["road1"], 10) is LightState.RED
+    model.hold(entry["road1"], "green", 20)  # later, a new set wins, and switches the junction
+    assert model.state(entry["road1"], 20) is LightState.GREEN
+    assert model.state(entry["road4"], 20) is LightState.RED
+    model.hold(entry["road1"], "yellow", 30)
+    model.hold(entry["road1"], "red", 30)  # two sets at one step: the later one
+    assert model.state(entry["road1"], 30) is LightState.RED
+
+
 def test_a_stop_sign_of_the_map_stops_one_entry() -> None:
     model = SignalModel(_network("arise_tjunction"), timestep=0.1)
     signs = [a for a in model.approaches if a.kind is SignalKind.STOP_SIGN]

@@ -65,7 +65,15 @@ def test_the_true_spec_conforms(example_run: CheckResult) -> None:
         ({"spawn_position": "crossing_road_from_left"}, "spawn_position"),
         ({"weather": "HardRainNight"}, "weather"),
         ({"ego_maneuver": "turn_left", "road_type": "intersection"}, "ego_maneuver"),
-        ({"participants": ["parked van on the right"]}, "participants"),
+        (
+            {
+                "participants": ["parked van on the right"],
+                "actors": [
+                    {"role": "parked", "scenic_class": "Van", "quote": "parked van on the right"}
+                ],
+            },
+            "participants",
+        ),
     ],
 )
 def test_planted_mismatches_are_caught(

@@ -41,7 +41,9 @@ class Approach:
     stop_line: tuple[tuple[float, float], tuple[float, float]]
     intersection: str
     phase: int = 0  # 0: A, 1: B (lights only)
-    overrides: list[tuple[int, LightState]] = field(default_factory=list)
+    # (step, state, set on this very approach): a state a script set on this approach
+    # beats one its junction implied at the same step (see `SignalModel.state`).
+    overrides: list[tuple[int, LightState, bool]] = field(default_factory=list)
 
     @property
     def midpoint(self) -> tuple[float, float]:
@@ -126,9 +128,15 @@ class SignalModel:
     def state(self, approach: Approach, step: int) -> LightState:
         if approach.kind is SignalKind.STOP_SIGN:
             return LightState.RED
-        held = [state for at, state in approach.overrides if at <= step]
+        held = [
+            (at, own, order, state)
+            for order, (at, state, own) in enumerate(approach.overrides)
+            if at <= step
+        ]
         if held:
-            return held[-1]
+            # The latest; at one step, what a script set here beats what the junction implied
+            # (both approaches set red at the start: both stay red, an all-red junction).
+            return max(held, key=lambda item: item[:3])[3]
         return cycle_state(approach.phase, step * self.timestep)
 
     def approaches_of(self, lane_uid: str | None) -> list[Approach]:
@@ -163,7 +171,7 @@ class SignalModel:
         if approach.kind is not SignalKind.TRAFFIC_LIGHT:
             return
         if state is LightState.OFF:
-            approach.overrides.append((step, state))
+            approach.overrides.append((step, state, True))
             return
         crossing = LightState.GREEN if state is LightState.RED else LightState.RED
         for other in self.approaches:
@@ -171,7 +179,8 @@ class SignalModel:
                 other.kind is SignalKind.TRAFFIC_LIGHT
                 and other.intersection == approach.intersection
             ):
-                other.overrides.append((step, state if other.phase == approach.phase else crossing))
+                same = other.phase == approach.phase
+                other.overrides.append((step, state if same else crossing, other is approach))
 
     def hold_intersection(self, intersection_uid: str, color: str, step: int) -> None:
         """Every light of a junction held at one colour (`setAllIntersectionTrafficLightsStatus`)."""
@@ -181,7 +190,7 @@ class SignalModel:
                 approach.intersection == intersection_uid
                 and approach.kind is SignalKind.TRAFFIC_LIGHT
             ):
-                approach.overrides.append((step, state))
+                approach.overrides.append((step, state, True))
 
     def traces(self, steps: int) -> list[SignalTrace]:
         """Every signal's state changes over steps 0..steps, for the trace."""
