@@ -10,7 +10,6 @@ gives each actor a pool of its own. The parent alone writes the database.
 from __future__ import annotations
 
 import json
-import os
 import time
 from collections.abc import Callable, Iterator, Sequence
 from concurrent.futures import ThreadPoolExecutor, as_completed
@@ -27,6 +26,7 @@ from arise.drive.store import DriveStore
 from arise.errors import AriseError
 from arise.present.replay import write_replay
 from arise.present.source import Origin, TraceSource
+from arise.ray_session import start_ray
 from arise.validate import CheckOptions, WorkerPool, check
 from arise.validate.types import CheckResult
 
@@ -186,17 +186,7 @@ def run_ray(tasks: Sequence[DriveTask], config: DriveConfig, out: Path) -> Itera
         raise ExecutorUnavailable("the Ray executor needs Ray: pip install 'arise[ray]'") from error
     if not tasks:
         return
-    started_here = not ray.is_initialized()
-    if started_here:
-        ray.init(
-            address=config.ray_address,
-            include_dashboard=False,
-            log_to_driver=False,
-            ignore_reinit_error=True,
-            runtime_env={
-                "env_vars": {k: v for k, v in os.environ.items() if k.startswith("ARISE_")}
-            },
-        )
+    started_here = start_ray(ray, config.ray_address)
     try:
         actor_class = ray.remote(num_cpus=1)(_RayActor)
         config_json = json.dumps(config.__dict__)

@@ -8,7 +8,6 @@ for all its tasks; the parent alone writes the database.
 from __future__ import annotations
 
 import json
-import os
 from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -24,6 +23,7 @@ from arise.generate.options import GenerateOptions, Mode
 from arise.generate.pipeline import Generator
 from arise.generate.run import Generation
 from arise.llm.accounting import UsageLedger
+from arise.ray_session import start_ray
 from arise.validate import CheckResult
 
 EXECUTORS = ("local", "ray")
@@ -338,17 +338,7 @@ def run_ray(tasks: Sequence[BenchTask], config: BenchConfig, out_root: Path) -> 
         from ray.util import ActorPool
     except ImportError as error:
         raise ExecutorUnavailable("the Ray executor needs Ray: pip install 'arise[ray]'") from error
-    started_here = not ray.is_initialized()
-    if started_here:
-        ray.init(
-            address=config.ray_address,
-            include_dashboard=False,
-            log_to_driver=False,
-            ignore_reinit_error=True,
-            runtime_env={
-                "env_vars": {k: v for k, v in os.environ.items() if k.startswith("ARISE_")}
-            },
-        )
+    started_here = start_ray(ray, config.ray_address)
     try:
         actor_class = ray.remote(num_cpus=1)(_RayActor)
         actors = [
