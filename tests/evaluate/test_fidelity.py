@@ -417,10 +417,15 @@ def test_as_dict_groups_scored_facts_by_kind() -> None:
 # -- the dev sets ---------------------------------------------------------------------------
 
 
-def test_the_three_dev_sets_load_and_validate() -> None:
+def test_the_dev_sets_load_and_validate() -> None:
     sets = load_devsets()
     counts = {dev_set: len(items) for dev_set, items in sets.items()}
-    assert counts == {DevSet.SHORT: 37, DevSet.NHTSA: 23, DevSet.CRASH_REPORT: 20}
+    assert counts == {
+        DevSet.SHORT: 37,
+        DevSet.NHTSA: 23,
+        DevSet.CRASH_REPORT: 20,
+        DevSet.STYLES: 24,
+    }
     assert sum(counts.values()) >= 66
     everything = [item for items in sets.values() for item in items]
     assert len({item.id for item in everything}) == len(everything)
