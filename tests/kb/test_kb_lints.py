@@ -98,3 +98,90 @@ def test_bad_weather_is_caught() -> None:
     assert "unknown CARLA weather parameter" in _messages(
         _entry("weather", "param weather = {'fogginess': 3.0}\n")
     )
+
+
+def _behavior(body: str, **fields: object) -> Entry:
+    snippet = "param OPT_ADV_SPEED = Range(5, 8)\nbehavior AdversaryBehavior():\n" + body
+    return _entry(
+        "behavior",
+        snippet,
+        defines=["AdversaryBehavior"],
+        needs=["advLane"] if "advLane" in body else [],
+        params=["OPT_ADV_SPEED"],
+        **fields,
+    )
+
+
+def test_an_adversary_move_must_start_from_the_ego() -> None:
+    at_once = _behavior(
+        "    do FollowLaneBehavior(target_speed=globalParameters.OPT_ADV_SPEED, "
+        "laneToFollow=advLane)\n"
+    )
+    assert "first move does not depend on the ego" in _messages(at_once)
+    on_the_clock = _behavior(
+        "    do FollowLaneBehavior(target_speed=globalParameters.OPT_ADV_SPEED, "
+        "laneToFollow=advLane) for 3 seconds\n"
+        "    while (distance from self to ego) > 10:\n"
+        "        take SetBrakeAction(1.0)\n"
+    )
+    assert "starts on the clock" in _messages(on_the_clock)
+    until_near = _behavior(
+        "    do FollowLaneBehavior(target_speed=globalParameters.OPT_ADV_SPEED, "
+        "laneToFollow=advLane) until (distance from self to ego) < 10\n"
+        "    do FollowLaneBehavior(target_speed=2) for 3 seconds\n"
+    )
+    assert not lint_entry(until_near)
+    # "ego" in a comment or a string is not a reference to it.
+    commented = _behavior(
+        "    # waits for the ego\n"
+        "    do FollowLaneBehavior(target_speed=globalParameters.OPT_ADV_SPEED, "
+        "laneToFollow=advLane)\n"
+    )
+    assert "first move does not depend on the ego" in _messages(commented)
+
+
+def test_a_helper_that_reads_the_ego_counts() -> None:
+    snippet = (
+        "param OPT_ADV_SPEED = Range(5, 8)\n"
+        "def EgoEta(point):\n"
+        "    return (distance from ego to point) / max(ego.speed, 0.5)\n"
+        "behavior WaitUntilDue(point, seconds):\n"
+        "    while EgoEta(point) > seconds:\n"
+        "        wait\n"
+        "behavior AdversaryBehavior():\n"
+        "    do WaitUntilDue(advLane.centerline[-1], 3)\n"
+        "    do FollowLaneBehavior(target_speed=globalParameters.OPT_ADV_SPEED) for 2 seconds\n"
+    )
+    entry = _entry(
+        "behavior",
+        snippet,
+        defines=["EgoEta", "WaitUntilDue", "AdversaryBehavior"],
+        needs=["advLane"],
+        params=["OPT_ADV_SPEED"],
+    )
+    assert not lint_entry(entry)
+
+
+def test_stationary_and_no_conflict_behaviors_are_exempt_by_tag() -> None:
+    body = "    while True:\n        take SetThrottleAction(0), SetBrakeAction(1.0)\n"
+    assert "does not depend on the ego" in _messages(_behavior(body))
+    assert not lint_entry(_behavior(body, tags=["static"]))
+    cruise = "    do FollowLaneBehavior(target_speed=globalParameters.OPT_ADV_SPEED)\n"
+    assert not lint_entry(_behavior(cruise, tags=["no_conflict"]))
+
+
+def test_our_clock_started_behaviors_of_before_would_be_refused() -> None:
+    """Two of the entries as they were before issue 31: on the clock, and at once."""
+    emergency = _behavior(
+        "    do FollowLaneBehavior(target_speed=globalParameters.OPT_ADV_SPEED, "
+        "laneToFollow=advLane) for globalParameters.OPT_ADV_SPEED seconds\n"
+        "    while True:\n"
+        "        take SetThrottleAction(0), SetBrakeAction(1.0), SetHandBrakeAction(True)\n"
+    )
+    assert "starts on the clock" in _messages(emergency)
+    route = _behavior(
+        "    take SetTrafficLightAction('red')\n"
+        "    do FollowTrajectoryBehavior(target_speed=globalParameters.OPT_ADV_SPEED, "
+        "trajectory=[advLane])\n"
+    )
+    assert "first move does not depend on the ego" in _messages(route)

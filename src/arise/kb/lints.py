@@ -2,8 +2,8 @@
 
 They catch what the validator cannot see from one composed script: Scenic 2 forms that
 happen to parse, params read without being declared by the same snippet, an interface
-(`defines`, `needs`, placeholders) that does not match the code, and names the assembler
-relies on.
+(`defines`, `needs`, placeholders) that does not match the code, names the assembler
+relies on, and an adversary whose move starts on the clock instead of from the ego.
 """
 
 from __future__ import annotations
@@ -64,6 +64,20 @@ ADVERSARY_OBJECT = re.compile(r"^adversary\s*=\s*new\s+\{\{ADVERSARY_CLASS\}\}",
 # Every composed script has these, so entries may use them without listing them in needs.
 ALWAYS_DEFINED = frozenset({"ego", "adversary", "AdversaryBehavior"})
 USES_ADVERSARY_BEHAVIOR = re.compile(r"with\s+behavior\s+AdversaryBehavior\s*\(\s*\)")
+#: Tags that declare a behavior without a move timed to the ego: it stands still
+#: (`static`), or its move has no conflict with the ego by nature (`no_conflict`: a steady
+#: cruise to be overtaken, a lead that leaves the lane to uncover something else).
+UNTIMED_TAGS = frozenset({"static", "no_conflict"})
+#: Actions and library behaviors that move an actor (Scenic's driving domain and CARLA's).
+MOTION = re.compile(
+    r"\bSet(?:Throttle|Speed|WalkingSpeed|WalkingDirection|Steer|Reverse|Velocity|Walk)Action\b"
+    r"|\bdo\s+(?:FollowLane|FollowTrajectory|LaneChange|Autopilot|Crossing|WalkForward|Walk|"
+    r"Turn|ConstantThrottle|AccelerateForward)Behavior\b|\bDriveAvoidingCollisions\b"
+)
+#: A move held for a time: `do X() for 3 seconds`, `... for globalParameters.OPT_N steps`.
+CLOCK = re.compile(r"\bfor\s+[^:\n]+?\s+(?:seconds|steps)\s*$", re.M)
+EGO = re.compile(r"(?<![\w.])ego\b")
+TOP_BLOCK = re.compile(r"^(?:behavior|def)\s+([A-Za-z_]\w*)\s*\(", re.M)
 
 
 @dataclass(frozen=True)
@@ -209,9 +223,80 @@ def _weather(snippet: str) -> list[str]:
     return weather_problems(snippet)
 
 
+def _blocks(code: str) -> dict[str, list[str]]:
+    """The body lines of each top-level behavior and function, by name."""
+    found: dict[str, list[str]] = {}
+    current: list[str] | None = None
+    for line in code.splitlines():
+        head = TOP_BLOCK.match(line)
+        if head:
+            current = found.setdefault(head.group(1), [])
+        elif line and not line[0].isspace():
+            current = None  # back at top level (a param, an assignment)
+        elif current is not None and line.strip():
+            current.append(line)
+    return found
+
+
+def _closure(blocks: dict[str, list[str]], direct: dict[str, bool]) -> dict[str, bool]:
+    """`direct` spread to every block that calls (however deeply) a block where it holds."""
+    result = dict(direct)
+    changed = True
+    while changed:
+        changed = False
+        for name, lines in blocks.items():
+            if result[name]:
+                continue
+            calls = {other for other in blocks if other != name and _calls(lines, other)}
+            if any(result[other] for other in calls):
+                result[name] = changed = True
+    return result
+
+
+def _calls(lines: Iterable[str], name: str) -> bool:
+    return any(re.search(rf"(?<![\w.]){re.escape(name)}\s*\(", line) for line in lines)
+
+
+def _timing(entry: Entry) -> list[str]:
+    """An adversary behavior must start its move from the ego's state, not from the clock:
+    some line of AdversaryBehavior at or before its first move reads the ego (directly or
+    through a helper of the snippet), and no `for N seconds` comes before one that does.
+    Entries tagged with one of UNTIMED_TAGS are exempt."""
+    if entry.component is not Component.BEHAVIOR or set(entry.tags) & UNTIMED_TAGS:
+        return []
+    blocks = _blocks(_code_only(entry.snippet))
+    body = blocks.get("AdversaryBehavior")
+    if body is None:
+        return []  # _assembler_names reports it
+    reads_ego = _closure(blocks, {n: any(EGO.search(x) for x in b) for n, b in blocks.items()})
+    moves = _closure(blocks, {n: any(MOTION.search(x) for x in b) for n, b in blocks.items()})
+    helpers = [name for name in blocks if name != "AdversaryBehavior"]
+    seen_ego = False
+    for line in body:
+        here = bool(EGO.search(line)) or any(reads_ego[h] and _calls([line], h) for h in helpers)
+        if CLOCK.search(line) and not seen_ego:
+            return [
+                "its move starts on the clock (`for ... seconds` before anything reads the "
+                f"ego): {line.strip()!r}; start it from the ego's distance or time to the "
+                "conflict point (docs/kb.md, Timing), or tag it static / no_conflict"
+            ]
+        moving = bool(MOTION.search(line)) or any(moves[h] and _calls([line], h) for h in helpers)
+        if moving and not (seen_ego or here):
+            return [
+                f"its first move does not depend on the ego: {line.strip()!r}; start it from "
+                "the ego's distance or time to the conflict point (docs/kb.md, Timing), or "
+                "tag it static / no_conflict"
+            ]
+        if moving:
+            return []
+        seen_ego = seen_ego or here
+    return []
+
+
 def lint_entry(entry: Entry) -> list[LintProblem]:
     """Everything wrong with one entry on its own."""
     messages = _scenic2(entry) + _params(entry) + _interface(entry) + _assembler_names(entry)
+    messages += _timing(entry)
     return [LintProblem(entry.id, message) for message in messages]
 
 
