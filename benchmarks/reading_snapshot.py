@@ -35,7 +35,7 @@ NEUTRAL = ExtractionAnswer.model_validate(
         "requirements": [],
     }
 )
-DEV_FILES = ("short.jsonl", "nhtsa.jsonl", "crash_reports.jsonl")
+DEV_FILES = ("short.jsonl", "nhtsa.jsonl", "crash_reports.jsonl", "styles.jsonl")
 
 
 def snapshot() -> list[dict[str, object]]:

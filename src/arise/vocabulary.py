@@ -117,6 +117,12 @@ class ActorClass(StrEnum):
         return not self.is_prop
 
     @property
+    def is_place(self) -> bool:
+        """A prop that names where others stand ("a bus standing at a bus stop on the
+        right"): the words after it still belong to the road user named before it."""
+        return self is ActorClass.BUS_STOP
+
+    @property
     def is_adversary(self) -> bool:
         """One of the classes an extracted adversary may have (see AdversaryType)."""
         return self in ADVERSARY_CLASSES

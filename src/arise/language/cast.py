@@ -39,7 +39,7 @@ _NEW = re.compile(r"\b(?:a|an|another|second|third|one|some|other)\s+(?:[\w'-]+[
 _DEFINITE = re.compile(r"\b(?:the|that|this|its|their|his|her)\s+(?:[\w'-]+[- ]){0,3}$", re.I)
 # "both vehicles", "no other vehicle": a summary or a negation, not one more thing.
 _NOT_NEW_THING = re.compile(
-    r"\b(?:both|all|neither|either|no|any|none of the|no one|nobody|each|other)\s+"
+    r"\b(?:both|all|neither|either|no|any|none of the|no one|nobody|each)\s+"
     r"(?:other\s+)?(?:\w+\s+)?$",
     re.I,
 )
@@ -69,6 +69,11 @@ _AUTONOMOUS = re.compile(
 # NHTSA's typology names the ego "Vehicle" with no article, at a sentence's start.
 _NHTSA_EGO = re.compile(r"(?:^|(?<=[.;:]\s))Vehicle(?:'s)?\b")
 _NHTSA_EGO_ANYWHERE = re.compile(r"(?<![\w'])(?<!\bthe )(?<!\ba )(?<!\ban )Vehicle(?:'s)?\b")
+# In that style also a lower-case "vehicle" right after a preposition ("drifts into
+# vehicle's lane"): group 1.
+_NHTSA_EGO_AFTER_PREPOSITION = re.compile(
+    r"\b(?:into|onto|of|to|with|by|behind|toward|towards|past|from|beside) (vehicle(?:'s)?)\b"
+)
 # A year and a capitalised name ("a 2017 Hollis Tern"), or a known make ("a white Subaru").
 _YEAR_NAME = re.compile(
     r"\b(?:19[5-9]\d|20[0-4]\d)\s+(?:[A-Z][\w-]*)(?:\s+(?:[A-Z0-9][\w-]*))?(?:\s+(?:[A-Z0-9][\w-]*))?"
@@ -221,6 +226,7 @@ def _ego_spans(text: str) -> list[Span]:
     nhtsa = list(_NHTSA_EGO.finditer(text))
     if nhtsa:  # the typology's style: every bare "Vehicle" is the ego
         spans += [Span(*m.span()) for m in _NHTSA_EGO_ANYWHERE.finditer(text)]
+        spans += [Span(*m.span(1)) for m in _NHTSA_EGO_AFTER_PREPOSITION.finditer(text)]
     ego_number = _numbered_ego(text)
     if ego_number is not None:
         spans += [Span(*m.span()) for m in _NUMBERED.finditer(text) if m.group(1) == ego_number]
@@ -248,8 +254,14 @@ def read_cast(text: str) -> Cast:
         candidates.append((match.start(), match.end(), ActorClass.CAR, "make"))
     candidates += _named_makes(text)
     candidates.sort(key=lambda c: (c[0], -c[1]))
+    # A noun right before another one modifies it ("a flatbed truck", "a taxi cab"): the
+    # phrase is one thing, named by its head, the last noun.
+    noun_starts = {start for start, _, _, kind in candidates if kind == "noun"}
     for start, end, cls, kind in candidates:
         if _overlaps(taken, start, end):
+            continue
+        following = re.match(r"[ -]+", text[end:])
+        if kind == "noun" and following and end + following.end() in noun_starts:
             continue
         after = text[end:]
         if kind in ("noun", "make") and _not_an_actor(after, lex.not_an_actor_before):
@@ -405,4 +417,12 @@ def phrase_start(text: str, start: int) -> int:
             break  # the phrase does not reach across punctuation
         if _DETERMINER.match(word.group(0)):
             return max(0, start - 40) + word.start()
-    return start
+    # No article: the modifiers right before the noun ("oncoming moto"), if any.
+    opened = start
+    modifiers = lexicon().classes["bare_modifier"] + lexicon().colours
+    for word in reversed(words[-2:]):
+        gap = text[max(0, start - 40) + word.end() : opened]
+        if word.group(0).lower() not in modifiers or re.search(r"[.;,!?()]", gap):
+            break
+        opened = max(0, start - 40) + word.start()
+    return opened

@@ -21,6 +21,8 @@ SAFE_LOADER: type[yaml.SafeLoader] = getattr(yaml, "CSafeLoader", yaml.SafeLoade
 @dataclass(frozen=True)
 class Lexicon:
     classes: dict[str, tuple[str, ...]]
+    #: A slot's word -> the word a value takes ("r" -> "right").
+    slot_words: dict[str, str]
     #: (Scenic class, phrases), most specific class first.
     nouns: tuple[tuple[str, tuple[str, ...]], ...]
     not_an_actor_before: tuple[str, ...]
@@ -45,8 +47,14 @@ def lexicon() -> Lexicon:
         raise RuleError("lexicon: not a mapping")
     classes = {name: _strings(words, f"classes.{name}") for name, words in data["classes"].items()}
     nouns = tuple((cls, _strings(words, f"nouns.{cls}")) for cls, words in data["nouns"].items())
+    slot_words = data.get("slot_words") or {}
+    if not isinstance(slot_words, dict) or not all(
+        isinstance(k, str) and isinstance(v, str) for k, v in slot_words.items()
+    ):
+        raise RuleError("lexicon: slot_words must map words to words")
     return Lexicon(
         classes=classes,
+        slot_words={k.lower(): v.lower() for k, v in slot_words.items()},
         nouns=nouns,
         not_an_actor_before=_strings(data["not_an_actor_before"], "not_an_actor_before"),
         makes=_strings(data["makes"], "makes"),

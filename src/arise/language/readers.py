@@ -20,7 +20,7 @@ from arise.language.cast import (
 from arise.language.facts import FactSource, GroundedFact
 from arise.language.quotes import find_quote
 from arise.language.reading import parse
-from arise.language.rules import Fact, Hit, rulebook
+from arise.language.rules import Fact, Hit, Target, rulebook
 from arise.language.weather import WeatherReading, read_weather
 from arise.vocabulary import (
     ActorClass,
@@ -61,7 +61,9 @@ def words_of(cast: Cast, mention: Mention) -> list[tuple[int, int]]:
     the next named actor or the end of the sentence."""
     text = cast.text
     stretches = []
-    starts = sorted(phrase_start(text, s.start) for m in cast.others for s in m.spans)
+    starts = sorted(
+        phrase_start(text, s.start) for m in cast.others if not m.cls.is_place for s in m.spans
+    )
     for span in mention.spans:
         lead = _passive_verb_start(text, phrase_start(text, span.start))
         end = next((s for s in starts if s > span.end), len(text))
@@ -125,9 +127,50 @@ def _ego_follows(cast: Cast, mention: Mention) -> GroundedFact | None:
 _ADJACENT = (RelativePosition.ADJACENT_LANE_LEFT, RelativePosition.ADJACENT_LANE_RIGHT)
 
 
+def _lane_number(cast: Cast, stretches: list[tuple[int, int]]) -> Hit | None:
+    """The first numbered lane named in these stretches of text."""
+    for start, end in stretches:
+        found = rulebook().first(Fact.LANE_NUMBER, cast.text, start, end)
+        if found is not None:
+            return found
+    return None
+
+
+def _ego_words(cast: Cast) -> list[tuple[int, int]]:
+    """The ego's own stretches: from each of its names to the next actor named or the end
+    of the sentence."""
+    others = sorted(phrase_start(cast.text, s.start) for m in cast.others for s in m.spans)
+    return [
+        (span.start, min([s for s in others if s > span.end] + [sentence_end(cast.text, span.end)]))
+        for span in cast.ego
+    ]
+
+
+def read_lane_number(cast: Cast, mention: Mention) -> GroundedFact | None:
+    """The lane beside the ego from numbered lanes ("V1 in the #1 lane ... V2 in the #2
+    lane"): lanes count from the left, so a higher number than the ego's is on its right."""
+    theirs = _lane_number(cast, words_of(cast, mention))
+    ours = _lane_number(cast, _ego_words(cast)) if theirs is not None else None
+    if theirs is None or ours is None or theirs.value == ours.value:
+        return None
+    right = int(theirs.value) > int(ours.value)
+    return GroundedFact(
+        name="spawn_position",
+        value=(
+            RelativePosition.ADJACENT_LANE_RIGHT if right else RelativePosition.ADJACENT_LANE_LEFT
+        ).value,
+        source=FactSource.TEXT,
+        quote=f"{ours.quote} ... {theirs.quote}",
+    )
+
+
 def read_position(cast: Cast, mention: Mention) -> GroundedFact | None:
     """Where `mention` starts, seen from the ego, from the words about it."""
-    told = _ego_follows(cast, mention) or _squeezed_beside(cast, mention)
+    told = (
+        read_lane_number(cast, mention)
+        or _ego_follows(cast, mention)
+        or _squeezed_beside(cast, mention)
+    )
     if told is not None:
         return told
     best: tuple[int, int, RelativePosition, str] | None = None
@@ -139,6 +182,8 @@ def read_position(cast: Cast, mention: Mention) -> GroundedFact | None:
         for hit in rulebook().hits(Fact.START, cast.text, start, end + 40):
             if hit.value in seen_values:
                 continue
+            if hit.rule.about is Target.SUBJECT and _subject(cast, hit.start) is not mention:
+                continue  # the words tell what the clause's subject does, and it is another
             seen_values.add(hit.value)
             if hit.end <= end:
                 cues.append((hit.start, hit.order, RelativePosition(hit.value), hit.quote))
@@ -224,8 +269,12 @@ def read_compass(cast: Cast, mention: Mention) -> GroundedFact | None:
     """A side from compass words ("the AV was northbound; an eastbound car"), as crash
     reports give them: the ego's bearing from its own words, the actor's from its words."""
     ego_bearing = None
+    others = sorted(s.start for m in cast.others for s in m.spans)
     for span in cast.ego:
-        found = _heading(cast.text, span.end, span.end + 60)
+        # In the ego's own words: up to the next actor named or the end of the sentence
+        # ("V1 entered the intersection of A Street and 9th Avenue eastbound").
+        until = min([s for s in others if s > span.end] + [sentence_end(cast.text, span.end)])
+        found = _heading(cast.text, span.end, min(until, span.end + 120))
         if found and not re.search(r"[.;]", cast.text[span.end : found.start]):
             ego_bearing = _COMPASS[found.value]
             break
@@ -484,7 +533,11 @@ def read_ego_plan(reading: Reading) -> None:
 
 
 def read_ego_stopped(reading: Reading) -> None:
-    """Whether the ego stands still for the whole scene, from words whose subject it is."""
+    """Whether the ego stands still for the whole scene, from words whose subject it is; not
+    when other words give it a maneuver ("stopped at the signal waiting to turn left")."""
+    told = reading.facts.get("ego_maneuver")
+    if told is not None and told.value != EgoManeuver.GO_STRAIGHT.value:
+        return
     for hit in rulebook().hits(Fact.EGO_HELD, reading.cast.text):
         if _subject(reading.cast, hit.start) == "ego":
             reading.facts["ego_stopped"] = GroundedFact(
@@ -517,7 +570,8 @@ def adversary_type_of(cls: ActorClass) -> AdversaryType | None:
 
 def choose_adversary(cast: Cast, quote: str | None) -> Mention | None:
     """The named road user the model points at (by a quote that is in the text); else the
-    first road user not described as parked or hiding something; else the first one."""
+    first road user not described as parked or hiding something, nor one someone comes out
+    from behind ("walks out from in front of the bus"); else the first one."""
     if quote:
         span = find_quote(cast.text, quote)
         if span is not None:
@@ -531,8 +585,11 @@ def choose_adversary(cast: Cast, quote: str | None) -> Mention | None:
     road_users = [m for m in cast.others if adversary_type_of(m.cls) is not None]
     for mention in road_users:
         stretches = words_of(cast, mention)
-        if not any(rulebook().first(Fact.BACKGROUND, cast.text, a, b) for a, b in stretches):
-            return mention
+        if any(rulebook().first(Fact.BACKGROUND, cast.text, a, b) for a, b in stretches):
+            continue
+        if any(cue_before(Fact.HIDES_BEHIND, cast.text, a, spaced=False) for a, _ in stretches):
+            continue
+        return mention
     return road_users[0] if road_users else None
 
 

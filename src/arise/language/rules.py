@@ -77,6 +77,7 @@ class Fact(StrEnum):
     HIDES_BEHIND = "hides_behind"  # words right before a thing that put someone behind it
     REQUIREMENT = "requirement"  # a constraint the text states (a RequirementKind)
     HEADING = "heading"  # a compass heading ("northbound", "from south to north")
+    LANE_NUMBER = "lane_number"  # the numbered lane an actor is in ("#2 lane", "lane 3")
 
 
 class Target(StrEnum):
@@ -134,7 +135,10 @@ class CompiledRule:
                     break
                 if any(a <= match.start() and match.end() <= b for a, b in vetoes):
                     continue
-                slots = {k: v.lower() for k, v in match.groupdict().items() if v}
+                words = lexicon().slot_words
+                slots = {
+                    k: words.get(v.lower(), v.lower()) for k, v in match.groupdict().items() if v
+                }
                 yield Hit(
                     rule=self.rule,
                     value=self.rule.value.format(**slots) if slots else self.rule.value,
@@ -255,8 +259,13 @@ def _check_value(rule: Rule, where: str) -> None:
     if any(slot not in classes for slot in slots):
         raise RuleError(f"{where}: rule {rule.id}: its value names no lexicon class")
     values = {rule.value}
+    words = lexicon().slot_words
     for slot in slots:
-        values = {value.replace(f"{{{slot}}}", word) for value in values for word in classes[slot]}
+        values = {
+            value.replace(f"{{{slot}}}", words.get(word, word))
+            for value in values
+            for word in classes[slot]
+        }
     unknown = sorted(values - allowed)
     if unknown:
         raise RuleError(f"{where}: rule {rule.id}: {rule.fact} cannot be {unknown[0]!r}")
