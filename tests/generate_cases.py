@@ -36,6 +36,8 @@ class Case:
             temperature=0.0,
             retrieval="bm25",
             cache=False,
+            # recorded when the model read every description; they test what follows
+            model_extraction="always",
         )
         values.update(self.extra)
         values.update(overrides)

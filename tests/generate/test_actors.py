@@ -11,7 +11,7 @@ import pytest
 from arise.generate.assemble import assemble, declared_params
 from arise.generate.conformity import check_conformity, contradictions
 from arise.generate.grounding import ground
-from arise.generate.options import GenerateOptions
+from arise.generate.options import GenerateOptions, ModelExtraction
 from arise.generate.pipeline import Generator
 from arise.generate.repair import RepairContext, guilty_actor, repair_once
 from arise.generate.retrieve import Retrieval, retrieve
@@ -278,7 +278,9 @@ def test_a_run_places_the_actors_tunes_only_the_adversary_and_drops_a_failing_ac
     )
     model = ScriptedProvider([extraction.model_dump_json(), json.dumps(defaults)])
     checker = FakeValidator([overlap, passed()])
-    options = GenerateOptions(retrieval="bm25", semantic_gate=False)
+    options = GenerateOptions(
+        retrieval="bm25", semantic_gate=False, model_extraction=ModelExtraction.ALWAYS
+    )
     with Generator(options, provider=UsageLedger(model), checker=checker) as generator:
         run = generator.generate(TRUCKS, tmp_path)
     assert run.status is RunStatus.EXECUTED, run.message

@@ -10,7 +10,7 @@ from pathlib import Path
 import pytest
 
 from arise.generate.events import ProgressEvent, RunFinished, StageStarted, event_dict
-from arise.generate.options import GenerateOptions
+from arise.generate.options import GenerateOptions, ModelExtraction
 from arise.generate.pipeline import Generator, ReconfigureError
 from arise.generate.run import RunStatus
 from arise.generate.spec import ExtractionAnswer, ScenarioSpec
@@ -20,6 +20,8 @@ from tests.fakes import FakeValidator, ScriptedProvider, passed
 from tests.generate_cases import FAULTY_KB
 
 DESCRIPTION = "A pedestrian steps off the right sidewalk in front of the ego car."
+# The same with words about a moment: its scripts' numbers are tuned by the model.
+TIMED_DESCRIPTION = "A pedestrian suddenly steps off the right sidewalk in front of the ego car."
 SPEC = ScenarioSpec.model_validate(
     {
         "adversary_type": "pedestrian",
@@ -44,9 +46,9 @@ ANSWER = ExtractionAnswer.model_validate(
 @pytest.fixture(scope="module")
 def generator() -> Iterator[Generator]:
     model = UsageLedger(ScriptedProvider())
-    with Generator(
-        GenerateOptions(retrieval="bm25"), provider=model, checker=FakeValidator()
-    ) as built:
+    # The model reads every description here (the tests are about its answers).
+    options = GenerateOptions(retrieval="bm25", model_extraction=ModelExtraction.ALWAYS)
+    with Generator(options, provider=model, checker=FakeValidator()) as built:
         yield built
 
 
@@ -67,7 +69,7 @@ def test_a_model_that_fails_mid_run_ends_it_as_a_provider_error(
     # Extraction answers; the parameter tuning gets three replies that never fit its schema.
     model = _script(generator, ANSWER.model_dump_json(), "{}", "{}", "{}")
     events: list[ProgressEvent] = []
-    run = generator.generate(DESCRIPTION, tmp_path, events.append)
+    run = generator.generate(TIMED_DESCRIPTION, tmp_path, events.append)
     assert run.status is RunStatus.PROVIDER_ERROR and "TunedParams" in (run.message or "")
     assert run.spec is not None and run.retrieval is not None and not run.attempts
     assert run.usage.calls == 4 and len(model.requests) == 4
@@ -158,7 +160,7 @@ def test_topk_is_the_number_of_candidates_kept(generator: Generator, tmp_path: P
     _script(generator, ANSWER.model_dump_json(), "{}", "{}", "{}")
     generator.reconfigure(generator.options.model_copy(update={"topk": 2}))
     try:
-        run = generator.generate(DESCRIPTION)
+        run = generator.generate(TIMED_DESCRIPTION)
     finally:
         generator.reconfigure(generator.options.model_copy(update={"topk": 10}))
     assert run.retrieval is not None
@@ -167,3 +169,30 @@ def test_topk_is_the_number_of_candidates_kept(generator: Generator, tmp_path: P
     }
     assert kept["geometry"] <= 2 and kept["spawn"] <= 2 and kept["behavior"] <= 2
     assert max(kept["geometry"], kept["spawn"], kept["behavior"]) == 2
+
+
+def test_a_description_with_no_speed_distance_or_moment_keeps_the_defaults_without_asking(
+    generator: Generator, tmp_path: Path
+) -> None:
+    # A tuning call would take the "{}" replies, which never fit its schema.
+    model = _script(generator, ANSWER.model_dump_json(), "{}", "{}", "{}", results=[passed()])
+    run = generator.generate(DESCRIPTION, tmp_path)
+    assert run.spec is not None and not run.spec.quantities_stated
+    assert run.retrieval is not None and any("no tuning call" in n for n in run.retrieval.notes)
+    assert len(model.requests) == 1 and run.status is not RunStatus.PROVIDER_ERROR
+
+
+def test_a_description_the_rules_read_whole_asks_the_model_nothing(tmp_path: Path) -> None:
+    """The default: no extraction call when the rules read the adversary and its start,
+    and no tuning call without words of speed, distance or time."""
+    model = ScriptedProvider([])  # any call would fail the run: there is no reply
+    checker = FakeValidator([passed()])
+    with Generator(
+        GenerateOptions(retrieval="bm25"), provider=UsageLedger(model), checker=checker
+    ) as generator:
+        run = generator.generate(DESCRIPTION, tmp_path)
+    assert run.status is RunStatus.EXECUTED, run.message
+    assert model.requests == [] and run.usage.calls == 0
+    assert run.spec is not None and run.spec.adversary_type.value == "pedestrian"
+    assert run.spec.spawn_position.value == "roadside_right"
+    assert any("no model call" in note for note in run.hint_notes)

@@ -34,7 +34,7 @@ from arise.evaluate.benchmark import (
 )
 from arise.evaluate.prompt_file import read_prompts
 from arise.evaluate.runner import BenchConfig
-from arise.generate.options import GenerateOptions, Mode
+from arise.generate.options import GenerateOptions, Mode, ModelExtraction
 from arise.llm.cli_options import ModelOption, ProviderOption, ReplayOption
 
 console = terminal.console()
@@ -152,6 +152,14 @@ def bench_command(
             "cost. Example: arise bench prompts.jsonl --no-semantic-gate",
         ),
     ] = True,
+    model_extraction: Annotated[
+        ModelExtraction,
+        typer.Option(
+            help="when-needed (default) or always: whether the model reads descriptions the "
+            "fixed rules read whole (arise mode; the baselines always ask it). "
+            "Example: arise bench prompts.jsonl --model-extraction always",
+        ),
+    ] = ModelExtraction.WHEN_NEEDED,
     map_dir: Annotated[str | None, typer.Option(help="Extra maps (e.g. CARLA towns).")] = None,
     replay: ReplayOption = None,
     cache: Annotated[
@@ -173,6 +181,7 @@ def bench_command(
         map_dir=map_dir,
         replay=replay,
         semantic_gate=semantic_gate,
+        model_extraction=model_extraction,
         cache=cache,
     )
     config = BenchConfig(

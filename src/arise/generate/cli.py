@@ -20,7 +20,7 @@ from arise.generate.batch import (
     run_batch,
 )
 from arise.generate.events import AttemptChecked, ProgressEvent, StageStarted
-from arise.generate.options import GenerateOptions, Mode
+from arise.generate.options import GenerateOptions, Mode, ModelExtraction
 from arise.generate.run import GateVerdict, Generation
 from arise.llm.cli_options import (
     ModelOption,
@@ -49,6 +49,8 @@ Examples:
   arise generate "..." --mode single-pass --provider openai --model gpt-4o-mini
 
   arise generate "..." --no-semantic-gate   # keep the first script that runs, as it is
+
+  arise generate "..." --model-extraction always   # the model reads every description
 """
 
 
@@ -94,6 +96,15 @@ def generate_command(
             'Example: arise generate "..." --no-semantic-gate',
         ),
     ] = True,
+    model_extraction: Annotated[
+        ModelExtraction,
+        typer.Option(
+            help="when-needed (default): the model reads the description only when the fixed "
+            "rules leave the adversary or its start open; always: on every description, as "
+            "the paper does (one more model call, same grounding). "
+            'Example: arise generate "..." --model-extraction always',
+        ),
+    ] = ModelExtraction.WHEN_NEEDED,
     as_json: Annotated[bool, typer.Option("--json", help="Print the reports as JSON.")] = False,
 ) -> None:
     options = GenerateOptions(
@@ -111,6 +122,7 @@ def generate_command(
         record=record,
         replay=replay,
         semantic_gate=semantic_gate,
+        model_extraction=model_extraction,
     )
     request = BatchRequest(
         description=description,

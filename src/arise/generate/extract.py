@@ -6,9 +6,10 @@ import json
 import re
 from dataclasses import dataclass, field
 
-from arise.generate.grounding import ground
+from arise.generate.grounding import answer_from_reading, ground
 from arise.generate.spec import ExtractionAnswer, ScenarioSpec
 from arise.language.condense import condense
+from arise.language.readers import read_description
 from arise.llm.base import BaseProvider
 from arise.llm.types import Message
 from arise.prompts import load, load_jsonl
@@ -80,15 +81,37 @@ def extraction_messages(description: str) -> list[Message]:
     return messages
 
 
+#: The note a run carries when the fixed rules read the description without the model.
+READ_BY_RULES = "extraction: the fixed rules read the adversary and its start; no model call"
+
+
 def extract_spec(
-    description: str, provider: BaseProvider, *, temperature: float = 0.0, seed: int | None = None
+    description: str,
+    provider: BaseProvider,
+    *,
+    temperature: float = 0.0,
+    seed: int | None = None,
+    ask_model: bool = False,
 ) -> Extraction:
     """Module A: the model's answer, grounded in the description (`grounding.ground`).
+    When the fixed rules alone read who the adversary is and where it starts (or that there
+    is none), the model is not asked unless `ask_model`: grounding would overrule its
+    answers on those facts anyway, and the call is most of a run's time.
     Provider failures propagate (the caller records them); bad input does not."""
     refusal = check_description(description)
     if refusal:
         return Extraction(error=refusal)
     condensed = condense(description)  # a crash report without its date and aftermath
+    if not ask_model:
+        read = answer_from_reading(read_description(condensed.text))
+        if read is not None:
+            grounded = ground(condensed.text, read)
+            return Extraction(
+                spec=grounded.spec,
+                contradictions=find_contradictions(condensed.text, grounded.spec),
+                notes=[READ_BY_RULES, *grounded.notes],
+                ignored=condensed.ignored,
+            )
     completion = provider.complete(
         extraction_messages(condensed.text),
         temperature=temperature,

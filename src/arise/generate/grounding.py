@@ -140,6 +140,49 @@ def _participants(reading: Reading) -> list[str]:
     return found
 
 
+def answer_from_reading(reading: Reading) -> ExtractionAnswer | None:
+    """The answer the model would be asked for, from the fixed rules alone: when they read
+    the adversary and where it starts, or that no road user is named; else None (the model
+    must be asked). Free text is the description's own words about each part."""
+    cast = reading.cast
+    facts = reading.facts
+    road_users = [m for m in cast.others if adversary_type_of(m.cls) is not None]
+    adversary = reading.adversary
+    if road_users and (adversary is None or "spawn_position" not in facts):
+        return None
+
+    def value(name: str, default: str) -> str:
+        return facts[name].value if name in facts else default
+
+    def words(stretches: list[tuple[int, int]]) -> str:
+        return " ".join(re.sub(r"\s+", " ", cast.text[a:b]).strip(" ,;.") for a, b in stretches[:2])
+
+    def quoted(name: str) -> str:
+        quote = facts[name].quote if name in facts else None
+        return quote if quote and quote_in(cast.text, quote) else ""
+
+    kind = adversary_type_of(adversary.cls) if adversary is not None else None
+    position = facts.get("spawn_position")
+    requirements = {
+        hit.value: Requirement(kind=RequirementKind(hit.value), text=hit.quote)
+        for hit in rulebook().hits(Fact.REQUIREMENT, cast.text)
+    }
+    return ExtractionAnswer(
+        adversary=adversary.quote if adversary is not None else "",
+        adversary_type=kind or AdversaryType.CAR,
+        behavior=words(words_of(cast, adversary)) if adversary is not None else "",
+        road_type=RoadType(value("road_type", RoadType.STRAIGHT.value)),
+        ego_maneuver=EgoManeuver(value("ego_maneuver", EgoManeuver.GO_STRAIGHT.value)),
+        geometry=quoted("ego_maneuver") or quoted("road_type"),
+        spawn_position=RelativePosition(
+            position.value if position else RelativePosition.AHEAD_SAME_LANE.value
+        ),
+        spawn=quoted("spawn_position"),
+        participants=[],
+        requirements=list(requirements.values()),
+    )
+
+
 def ground(description: str, answer: ExtractionAnswer) -> Grounded:
     """The spec of `description`: the fixed rules' readings first, the model's answers
     where they rest on words of the text, neutral defaults for what the text leaves open."""
@@ -238,6 +281,7 @@ def ground(description: str, answer: ExtractionAnswer) -> Grounded:
         adversary_stationary="adversary_stationary" in facts,
         ego_stopped="ego_stopped" in facts,
         ego_on_ramp="ego_on_ramp" in facts,
+        quantities_stated="quantity" in facts,
         ego_plan=EgoPlan(facts["ego_plan"].value) if "ego_plan" in facts else None,
         start_detail=(
             StartDetail(facts["start_detail"].value) if "start_detail" in facts else None

@@ -15,6 +15,13 @@ class Mode(StrEnum):
     CHATSCENE = "chatscene"  # single pass, top-1 snippets by text only, used as they are
 
 
+class ModelExtraction(StrEnum):
+    """When module A asks the model to read the description."""
+
+    WHEN_NEEDED = "when-needed"  # only when the fixed rules leave the adversary or its start open
+    ALWAYS = "always"  # every description (the paper's way; slower, for comparisons)
+
+
 class GenerateOptions(BaseModel):
     mode: Mode = Mode.ARISE
     provider: str | None = None
@@ -39,6 +46,7 @@ class GenerateOptions(BaseModel):
     # A script that runs must also agree with the spec (the deterministic conformity check)
     # or be repaired; on by default, and only ever on in arise mode (see `gate_on`).
     semantic_gate: bool = True
+    model_extraction: ModelExtraction = ModelExtraction.WHEN_NEEDED
 
     @property
     def gate_on(self) -> bool:

@@ -19,7 +19,7 @@ from arise.generate.conformity import (
 )
 from arise.generate.events import Progress, RunFinished, RunStage, StageStarted, ignore
 from arise.generate.extract import check_description, extract_spec
-from arise.generate.options import GenerateOptions, Mode
+from arise.generate.options import GenerateOptions, Mode, ModelExtraction
 from arise.generate.outputs import (
     attempt_png,
     write_attempt,
@@ -306,7 +306,12 @@ class Generator:
         emit(StageStarted(RunStage.EXTRACT))
         self.provider.label = "extract"
         extraction = extract_spec(
-            run.description, self.provider, temperature=options.temperature, seed=options.seed
+            run.description,
+            self.provider,
+            temperature=options.temperature,
+            seed=options.seed,
+            ask_model=options.model_extraction is ModelExtraction.ALWAYS
+            or options.mode is not Mode.ARISE,
         )
         if extraction.spec is None:
             return Outcome(RunStatus.REFUSED, extraction.error)
@@ -326,7 +331,14 @@ class Generator:
         adversary = None if spec.no_adversary else spec.scenic_class
         try:
             params: dict[str, str] = {}
-            if options.mode is not Mode.CHATSCENE and run.retrieval.chosen:
+            tunes = options.mode is not Mode.CHATSCENE and bool(run.retrieval.chosen)
+            if tunes and not spec.quantities_stated:
+                tunes = False
+                run.retrieval.notes.append(
+                    "parameters: the description gives no speed, distance or moment; "
+                    "the defaults stand (no tuning call)"
+                )
+            if tunes:
                 self.provider.label = "adapt"
                 params, notes = tune_params(
                     run.description,

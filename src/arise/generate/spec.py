@@ -154,6 +154,11 @@ class ScenarioSpec(BaseModel):
     ego_on_ramp: bool = Field(
         default=False, description="the text says the ego comes up an on-ramp and merges"
     )
+    quantities_stated: bool = Field(
+        default=True,
+        description="the text says how fast, how far or when something happens; if not, "
+        "the script's tunable numbers keep their defaults (no tuning call)",
+    )
     ego_stopped: bool = Field(
         default=False,
         description="the text says the ego stands still (at a red light, in traffic)",

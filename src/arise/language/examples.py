@@ -36,6 +36,7 @@ def read_facts(description: str) -> dict[str, dict[str, str]]:
         "ego_on_ramp": ("ego", Fact.EGO_ON_RAMP.value),
         "weather": ("scene", "weather"),
         "road_type": ("scene", Fact.ROAD.value),
+        "quantity": ("scene", Fact.QUANTITY.value),
     }
     for name, fact in reading.facts.items():
         if name in names:

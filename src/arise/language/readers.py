@@ -626,7 +626,17 @@ def read_description(description: str, adversary_quote: str | None = None) -> Re
     read_ego_plan(reading)
     read_ego_on_ramp(reading)
     read_road(reading)
+    read_quantity(reading)
     return reading
+
+
+def read_quantity(reading: Reading) -> None:
+    """Whether the description says how fast, how far or when (the first such words)."""
+    found = rulebook().by_order(Fact.QUANTITY, reading.cast.text)
+    if found is not None:
+        reading.facts["quantity"] = GroundedFact(
+            name="quantity", value=found.value, source=FactSource.TEXT, quote=found.quote
+        )
 
 
 def read_road(reading: Reading) -> None:
