@@ -1,14 +1,15 @@
 """Does each adversary behavior of the knowledge base meet the ego, whoever drives it?
 
 Run:  .venv/bin/python benchmarks/conflict_reach.py [--agents blind,cautious] [--seed N]
-      [--only behavior.cut_in,...]
+      [--only behavior.cut_in,...] [--all]
 Each behavior entry (but those declared as no conflict by nature, `NO_CONFLICT_TAGS`) is
 composed with its companions as the KB validator plans it, the ego's `OPT_EGO_SPEED` is
 fixed at a slow and a fast value (0.6 and 1.4 times the middle of its geometry's range),
 and the script runs in the validator with a built-in agent in the ego's seat. A run
 reaches the conflict when the adversary's box comes within 6 m of the ego's, or the
 time-to-collision of the two boxes (constant velocity) drops under 3 s. One markdown row
-per entry: per agent and speed, `yes`/`no` (with the gap and TTC), then the share.
+per entry: per agent and speed, `yes`/`no` (with the gap and TTC), then the share;
+`--all` measures the declared exceptions too.
 To measure an older knowledge base, run it from a copy of that commit's src
 (PYTHONPATH=<copy>/src); tests/kb/test_conflict_timing.py asserts the same on this one.
 """
@@ -81,12 +82,13 @@ class Reach:
         return f"{'yes' if self.met else 'no'} ({gap} m, {ttc} s)"
 
 
-def adversary_behaviors(entries: Iterable[Entry]) -> list[Entry]:
-    """The behavior entries that must meet the ego (all but the declared exceptions)."""
+def adversary_behaviors(entries: Iterable[Entry], *, every: bool = False) -> list[Entry]:
+    """The behavior entries that must meet the ego (all but the declared exceptions, unless
+    `every`)."""
     return [
         e
         for e in entries
-        if e.component is Component.BEHAVIOR and not set(e.tags) & NO_CONFLICT_TAGS
+        if e.component is Component.BEHAVIOR and (every or not set(e.tags) & NO_CONFLICT_TAGS)
     ]
 
 
@@ -139,11 +141,11 @@ def run_case(case: Case, pool: WorkerPool, seed: int) -> Reach:
 
 
 def cases(
-    entries: Sequence[Entry], only: set[str] | None, agents: Sequence[str]
+    entries: Sequence[Entry], only: set[str] | None, agents: Sequence[str], *, every: bool = False
 ) -> tuple[list[Case], list[str]]:
     found: list[Case] = []
     missing: list[str] = []
-    for behavior in adversary_behaviors(entries):
+    for behavior in adversary_behaviors(entries, every=every):
         if only and behavior.id not in only:
             continue
         composition = composition_for(behavior, entries)
@@ -164,11 +166,12 @@ def main(argv: Sequence[str] | None = None) -> int:
     parser.add_argument("--seed", type=int, default=1)
     parser.add_argument("--workers", type=int, default=2)
     parser.add_argument("--only", default="", help="comma-separated behavior ids")
+    parser.add_argument("--all", action="store_true", help="the declared exceptions too")
     args = parser.parse_args(argv)
     agents = [a for a in args.agents.split(",") if a]
     only = {i for i in args.only.split(",") if i} or None
     entries = list(load_kb(builtin=True))
-    todo, missing = cases(entries, only, agents)
+    todo, missing = cases(entries, only, agents, every=args.all)
     labels = [f"{agent}@{factor:g}" for agent in agents for factor in SPEED_FACTORS]
     print(f"| behavior | {' | '.join(labels)} |")
     print(f"|---|{'---|' * len(labels)}")
