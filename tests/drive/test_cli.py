@@ -19,6 +19,7 @@ from typer.testing import CliRunner
 
 from arise.cli import app
 from arise.drive.session import DriveRequest, Generating, drive
+from arise.executors import Executor
 from tests.conftest import EXAMPLES
 from tests.generate_cases import CASES
 
@@ -177,7 +178,7 @@ def test_the_ray_executor_drives_confined(tmp_path: Path) -> None:
     pytest.importorskip("ray")
     source = _scripts(tmp_path / "scripts", "turning_obstacle")
     summary = drive(
-        DriveRequest(target=source, agent="scripted", out=tmp_path / "out", executor="ray")
+        DriveRequest(target=source, agent="scripted", out=tmp_path / "out", executor=Executor.RAY)
     )
     [record] = summary.records
     assert record.driven and (record.sandbox or "").startswith("landlock+seccomp+rlimits")

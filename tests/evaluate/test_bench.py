@@ -23,6 +23,7 @@ from arise.cli import app
 from arise.evaluate.prompt_file import BenchPrompt, read_prompts
 from arise.evaluate.runner import BenchConfig, pending, run_bench
 from arise.evaluate.store import BenchStore, BenchStoreError
+from arise.executors import Executor
 from arise.generate.options import GenerateOptions, Mode
 from arise.generate.run import AttemptKind
 from tests.generate_cases import CASES
@@ -120,7 +121,7 @@ def test_ray_executor_on_a_local_instance(
     prompts, cassette = prompts_and_cassette
     config = BenchConfig(
         prompts=read_prompts(prompts),
-        executor="ray",
+        executor=Executor.RAY,
         workers=2,
         base=GenerateOptions(replay=str(cassette)),
     )
@@ -172,7 +173,17 @@ def test_judge_pass_scores_finished_runs_later(tmp_path: Path) -> None:
         ).read_text()
     )
     out = tmp_path / "bench"
-    command = ["bench", str(prompts), "--out", str(out), "--replay", str(cassette)]
+    # The judge's cassette holds the script written when the model read the description.
+    command = [
+        "bench",
+        str(prompts),
+        "--out",
+        str(out),
+        "--replay",
+        str(cassette),
+        "--ask-model",
+        "always",
+    ]
     assert runner.invoke(app, command).exit_code == 0
     judged = runner.invoke(app, [*command, "--judge"])
     assert judged.exit_code == 0, judged.output

@@ -28,6 +28,7 @@ from arise.drive.session import (
     RunDriven,
     drive,
 )
+from arise.executors import parse_executor
 from arise.generate.options import GenerateOptions
 from arise.limits import MAX_STEPS
 from arise.llm.cli_options import ModelOption, ProviderOption, ReplayOption
@@ -105,7 +106,7 @@ def drive_command(
         runs=runs,
         seed=seed,
         workers=workers,
-        executor=executor,
+        executor=parse_executor(executor),  # ExecutorUnavailable: one line, exit 2
         map_dir=map_dir,
         steps=steps,
         ray_address=ray_address,

@@ -24,20 +24,16 @@ from arise.drive.records import DriveRecord, DriveStatus, DriveTask
 from arise.drive.sources import Scenario, safe_part
 from arise.drive.store import DriveStore
 from arise.errors import AriseError
+from arise.executors import Executor, ExecutorUnavailable
 from arise.present.replay import write_replay
 from arise.present.source import Origin, TraceSource
 from arise.ray_session import start_ray
 from arise.validate import CheckOptions, WorkerPool, check
 from arise.validate.types import CheckResult
 
-EXECUTORS = ("local", "ray")
 COLLISIONS = "collisions"
 #: Simulated steps of a drive (as `arise check`): long enough for most routes.
 DRIVE_STEPS = 300
-
-
-class ExecutorUnavailable(AriseError):
-    """The drive cannot run on the executor asked for (unknown, or Ray is missing)."""
 
 
 OnRecord = Callable[[DriveRecord], None]
@@ -49,7 +45,7 @@ class DriveConfig:
     runs: int = 1
     seed: int = 0
     workers: int = 1
-    executor: str = "local"
+    executor: Executor = Executor.LOCAL
     map_dir: str | None = None
     steps: int = DRIVE_STEPS
     timeout: float = 60.0
@@ -63,11 +59,6 @@ class DriveConfig:
             timeout=self.timeout,
             agent=self.agent,
         )
-
-
-def check_executor(executor: str) -> None:
-    if executor not in EXECUTORS:
-        raise ExecutorUnavailable(f"--executor is one of {', '.join(EXECUTORS)}")
 
 
 def plan(scenarios: Sequence[Scenario], config: DriveConfig) -> list[DriveTask]:
@@ -210,10 +201,9 @@ def run_drive(
     on_record: OnRecord | None = None,
 ) -> list[DriveRecord]:
     """Run what the database does not hold yet; every finished run is saved at once."""
-    check_executor(config.executor)
     store.set_meta(agent=config.agent, runs=config.runs, seed=config.seed, steps=config.steps)
     todo = pending(tasks, store)
-    executor = run_ray if config.executor == "ray" else run_local
+    executor = run_ray if config.executor is Executor.RAY else run_local
     finished: list[DriveRecord] = []
     for record in executor(todo, config, out):
         store.save(record)

@@ -17,7 +17,6 @@ from arise.drive.report import write_report
 from arise.drive.runner import (
     DRIVE_STEPS,
     DriveConfig,
-    check_executor,
     pending,
     plan,
     planned_records,
@@ -26,6 +25,7 @@ from arise.drive.runner import (
 from arise.drive.sources import Scenarios, SourceKind, scenarios_of, source_kind
 from arise.drive.store import DATABASE, DriveStore
 from arise.errors import Interrupted
+from arise.executors import Executor
 from arise.generate.options import GenerateOptions
 from arise.validate.types import confinement_summary
 
@@ -40,7 +40,7 @@ class DriveRequest:
     runs: int = 1
     seed: int = 0
     workers: int = 1
-    executor: str = "local"
+    executor: Executor = Executor.LOCAL
     map_dir: str | None = None
     steps: int = DRIVE_STEPS
     timeout: float = 60.0
@@ -130,7 +130,6 @@ def drive(request: DriveRequest, on_event: OnDriveEvent | None = None) -> DriveS
     with every finished run saved."""
     emit = on_event or (lambda event: None)
     agent = resolve_agent(request.agent)
-    check_executor(request.executor)
     config = DriveConfig(
         agent=agent,
         runs=request.runs,

@@ -15,9 +15,7 @@ from arise.errors import AriseError, Interrupted
 from arise.evaluate.records import RunRecord
 from arise.evaluate.report import write_report
 from arise.evaluate.runner import (
-    EXECUTORS,
     BenchConfig,
-    ExecutorUnavailable,
     judge_missing,
     pending,
     recheck,
@@ -88,17 +86,10 @@ class BenchSummary:
         return confinement_summary([r.sandbox for r in self.records if r.ok])
 
 
-def check_executor(executor: str) -> None:
-    """ExecutorUnavailable unless `executor` is one a benchmark can run on."""
-    if executor not in EXECUTORS:
-        raise ExecutorUnavailable(f"--executor is one of {', '.join(EXECUTORS)}")
-
-
 def benchmark(config: BenchConfig, out: Path, on_event: OnBenchEvent | None = None) -> BenchSummary:
     """Do the runs `out/bench.sqlite` does not hold yet (judging finished runs first with
     --judge), then write `out/report/`. Ctrl-C raises Interrupted: what finished is saved."""
     emit = on_event or (lambda event: None)
-    check_executor(config.executor)
     with BenchStore(out / DATABASE) as store:  # BenchStoreError: one line, exit 2
         todo = pending(config, store)
         total = len(todo) + len(store.done_keys())

@@ -30,10 +30,10 @@ from arise.evaluate.benchmark import (
     RunsStarted,
     bench_report,
     benchmark,
-    check_executor,
 )
 from arise.evaluate.prompt_file import read_prompts
 from arise.evaluate.runner import BenchConfig
+from arise.executors import parse_executor
 from arise.generate.options import GenerateOptions, Mode, ModelExtraction
 from arise.llm.cli_options import ModelOption, ProviderOption, ReplayOption
 
@@ -155,9 +155,11 @@ def bench_command(
     model_extraction: Annotated[
         ModelExtraction,
         typer.Option(
+            "--ask-model",
+            metavar="WHEN",
             help="when-needed (default) or always: whether the model reads descriptions the "
             "fixed rules read whole (arise mode; the baselines always ask it). "
-            "Example: arise bench prompts.jsonl --model-extraction always",
+            "Example: arise bench prompts.jsonl --ask-model always",
         ),
     ] = ModelExtraction.WHEN_NEEDED,
     map_dir: Annotated[str | None, typer.Option(help="Extra maps (e.g. CARLA towns).")] = None,
@@ -170,7 +172,7 @@ def bench_command(
         ),
     ] = False,
 ) -> None:
-    check_executor(executor)  # before the prompts are read: ExecutorUnavailable, exit 2
+    chosen = parse_executor(executor)  # before the prompts are read: ExecutorUnavailable, exit 2
     resolved = resolve_agent(agent) if agent is not None else None  # AgentNameError, exit 2
     items = read_prompts(prompts)  # PromptFileError: one line, exit 2
     base = GenerateOptions(
@@ -191,7 +193,7 @@ def bench_command(
         temperatures=_temperatures(temperatures),
         runs=runs,
         workers=workers,
-        executor=executor,
+        executor=chosen,
         judge=judge,
         judge_provider=judge_provider,
         judge_model=judge_model,

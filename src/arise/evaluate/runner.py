@@ -19,19 +19,13 @@ from arise.evaluate.criticality import criticality
 from arise.evaluate.prompt_file import BenchPrompt
 from arise.evaluate.records import BenchTask, RunRecord
 from arise.evaluate.store import BenchStore
+from arise.executors import Executor, ExecutorUnavailable
 from arise.generate.options import GenerateOptions, Mode
 from arise.generate.pipeline import Generator
 from arise.generate.run import Generation
 from arise.llm.accounting import UsageLedger
 from arise.ray_session import start_ray
 from arise.validate import CheckResult
-
-EXECUTORS = ("local", "ray")
-
-
-class ExecutorUnavailable(AriseError):
-    """The benchmark cannot run on the executor asked for (unknown, or Ray is missing)."""
-
 
 OnRecord = Callable[[RunRecord], None]
 
@@ -44,7 +38,7 @@ class BenchConfig:
     temperatures: list[float] = field(default_factory=lambda: [0.0])
     runs: int = 1
     workers: int = 1
-    executor: str = "local"
+    executor: Executor = Executor.LOCAL
     judge: bool = False
     # The judge's own model (the paper judges with another model than it generates with).
     judge_provider: str | None = None
@@ -367,10 +361,6 @@ def run_bench(
     config: BenchConfig, store: BenchStore, out_root: Path, on_record: OnRecord | None = None
 ) -> list[RunRecord]:
     """Run what the database does not hold yet; every finished run is saved at once."""
-    if config.executor not in EXECUTORS:
-        raise ExecutorUnavailable(
-            f"unknown executor '{config.executor}': use one of {', '.join(EXECUTORS)}"
-        )
     store.set_meta(
         options=config.base.model_dump(mode="json"),
         modes=[m.value for m in config.modes],
@@ -380,7 +370,7 @@ def run_bench(
         **({"agent": config.agent} if config.agent else {}),
     )
     tasks = pending(config, store)
-    executor = run_ray if config.executor == "ray" else run_local
+    executor = run_ray if config.executor is Executor.RAY else run_local
     finished = []
     for record in executor(tasks, config, out_root):
         store.save(record)

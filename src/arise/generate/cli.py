@@ -50,7 +50,7 @@ Examples:
 
   arise generate "..." --no-semantic-gate   # keep the first script that runs, as it is
 
-  arise generate "..." --model-extraction always   # the model reads every description
+  arise generate "..." --ask-model always   # the model reads every description
 """
 
 
@@ -99,10 +99,12 @@ def generate_command(
     model_extraction: Annotated[
         ModelExtraction,
         typer.Option(
+            "--ask-model",
+            metavar="WHEN",
             help="when-needed (default): the model reads the description only when the fixed "
             "rules leave the adversary or its start open; always: on every description, as "
             "the paper does (one more model call, same grounding). "
-            'Example: arise generate "..." --model-extraction always',
+            'Example: arise generate "..." --ask-model always',
         ),
     ] = ModelExtraction.WHEN_NEEDED,
     as_json: Annotated[bool, typer.Option("--json", help="Print the reports as JSON.")] = False,

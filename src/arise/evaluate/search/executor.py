@@ -14,17 +14,12 @@ import time
 from collections.abc import Iterator, Sequence
 from concurrent.futures import ThreadPoolExecutor, as_completed
 from dataclasses import asdict, dataclass, field
-from enum import StrEnum
 from pathlib import Path
 from typing import Any, Protocol
 
 from arise.evaluate.search.errors import SearchError
+from arise.executors import Executor
 from arise.validate import CheckOptions, CheckResult, WorkerPool, check
-
-
-class Executor(StrEnum):
-    LOCAL = "local"  # threads sharing a pool of `workers` confined processes
-    RAY = "ray"  # one Ray actor per worker, each with its own confined process
 
 
 @dataclass(frozen=True)
