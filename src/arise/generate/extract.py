@@ -3,25 +3,17 @@
 from __future__ import annotations
 
 import json
-import re
 from dataclasses import dataclass, field
 
 from arise.generate.grounding import answer_from_reading, ground
 from arise.generate.spec import ExtractionAnswer, ScenarioSpec
 from arise.language.condense import condense
-from arise.language.readers import read_description
+from arise.language.readers import Reading, read_description
+from arise.language.sense import is_about_traffic, self_contradictions
 from arise.llm.base import BaseProvider
 from arise.llm.types import Message
 from arise.prompts import load, load_jsonl
-from arise.vocabulary import EgoManeuver
 
-DRIVING_WORDS = re.compile(
-    r"\b(ego|car|cars|vehicle|vehicles|truck|van|bus|motorcycl\w*|motorbike|bike|bicycle|"
-    r"cyclist|pedestrian|walker|person|child|people|road|street|lane|lanes|intersection|"
-    r"junction|crossroads|crossing|highway|motorway|traffic|drive\w*|turn\w*|overtak\w*|"
-    r"pass\w*|brak\w*|park\w*|red light|signal)\b",
-    re.I,
-)
 MAX_DESCRIPTION_CHARS = 2000
 
 
@@ -46,7 +38,7 @@ def check_description(description: str) -> str | None:
             f"the description is {len(text)} characters long; keep it under "
             f"{MAX_DESCRIPTION_CHARS} (one scenario per description)"
         )
-    if not DRIVING_WORDS.search(text):
+    if not is_about_traffic(text):
         return (
             "this does not look like a driving scenario: mention the road users "
             "(ego car, pedestrian, cyclist, ...) and what happens on the road"
@@ -54,22 +46,9 @@ def check_description(description: str) -> str | None:
     return None
 
 
-def find_contradictions(description: str, spec: ScenarioSpec | None = None) -> list[str]:
-    """Statements in the description that cannot all hold, and spec fields that disagree."""
-    text = description.lower()
-    found = []
-    left = bool(re.search(r"\b(turns?|turning) left\b|\bleft turn\b", text))
-    right = bool(re.search(r"\b(turns?|turning) right\b|\bright turn\b", text))
-    if left and right and "ego" in text:
-        found.append("the description has the ego turn both left and right")
-    if re.search(r"\bhighway\b|\bmotorway\b", text) and re.search(r"\bpedestrian|sidewalk\b", text):
-        found.append("pedestrians and sidewalks do not belong on a highway")
-    if spec is not None:
-        if left and not right and spec.ego_maneuver is EgoManeuver.TURN_RIGHT:
-            found.append("the description says left, the extracted maneuver is turn_right")
-        if right and not left and spec.ego_maneuver is EgoManeuver.TURN_LEFT:
-            found.append("the description says right, the extracted maneuver is turn_left")
-    return found
+def find_contradictions(reading: Reading) -> list[str]:
+    """Statements in the description that cannot all hold (`language.sense`)."""
+    return self_contradictions(reading)
 
 
 def extraction_messages(description: str) -> list[Message]:
@@ -102,13 +81,14 @@ def extract_spec(
     if refusal:
         return Extraction(error=refusal)
     condensed = condense(description)  # a crash report without its date and aftermath
+    reading = read_description(condensed.text)
     if not ask_model:
-        read = answer_from_reading(read_description(condensed.text))
+        read = answer_from_reading(reading)
         if read is not None:
             grounded = ground(condensed.text, read)
             return Extraction(
                 spec=grounded.spec,
-                contradictions=find_contradictions(condensed.text, grounded.spec),
+                contradictions=find_contradictions(reading),
                 notes=[READ_BY_RULES, *grounded.notes],
                 ignored=condensed.ignored,
             )
@@ -124,7 +104,7 @@ def extract_spec(
     grounded = ground(condensed.text, answer)
     return Extraction(
         spec=grounded.spec,
-        contradictions=find_contradictions(condensed.text, grounded.spec),
+        contradictions=find_contradictions(reading),
         notes=grounded.notes,
         ignored=condensed.ignored,
     )

@@ -114,7 +114,7 @@ def _ego_follows(cast: Cast, mention: Mention) -> GroundedFact | None:
     for span in mention.spans:
         lead = phrase_start(cast.text, span.start)
         found = cue_before(Fact.EGO_BEHIND, cast.text, lead)
-        if found and _subject(cast, found.start) == "ego":
+        if found and subject_of(cast, found.start) == "ego":
             return GroundedFact(
                 name="spawn_position",
                 value=RelativePosition.AHEAD_SAME_LANE.value,
@@ -182,7 +182,7 @@ def read_position(cast: Cast, mention: Mention) -> GroundedFact | None:
         for hit in rulebook().hits(Fact.START, cast.text, start, end + 40):
             if hit.value in seen_values:
                 continue
-            if hit.rule.about is Target.SUBJECT and _subject(cast, hit.start) is not mention:
+            if hit.rule.about is Target.SUBJECT and subject_of(cast, hit.start) is not mention:
                 continue  # the words tell what the clause's subject does, and it is another
             seen_values.add(hit.value)
             if hit.end <= end:
@@ -304,7 +304,7 @@ def read_compass(cast: Cast, mention: Mention) -> GroundedFact | None:
     return None
 
 
-def _subject(cast: Cast, position: int) -> Mention | str | None:
+def subject_of(cast: Cast, position: int) -> Mention | str | None:
     """Who a verb at `position` is about: the subject of its clause (`language.clauses`);
     without clauses, the actor named last before it in its sentence, or, for a leading
     participle ("Turning left at ..., the ego ..."), the one after it."""
@@ -335,7 +335,7 @@ def read_ego_overtaking(reading: Reading) -> None:
     text = reading.cast.text
     book = rulebook()
     for match in book.hits(Fact.EGO_OVERTAKES, text):
-        if _subject(reading.cast, match.start) != "ego":
+        if subject_of(reading.cast, match.start) != "ego":
             continue
         quote = match.quote
         through = book.first(
@@ -378,7 +378,7 @@ def read_maneuvers(reading: Reading) -> None:
     for hit in rulebook().hits(Fact.TURN, cast.text):
         found.append((hit.start, hit.value, hit.quote))
     for position, kind, words in sorted(found):
-        subject = _subject(cast, position)
+        subject = subject_of(cast, position)
         if subject is None and re.match(r"unprotected", words, re.I):
             subject = "ego"
         if subject == "ego" and ego is None:
@@ -402,7 +402,7 @@ def read_maneuvers(reading: Reading) -> None:
         )
     if ego is not None and ego[0] is EgoManeuver.CHANGE_LANE:
         for hit in rulebook().hits(Fact.LANE_SIDE, cast.text):
-            if _subject(cast, hit.start) == "ego":
+            if subject_of(cast, hit.start) == "ego":
                 reading.facts["ego_lane_side"] = GroundedFact(
                     name="ego_lane_side", value=hit.value, source=FactSource.TEXT, quote=hit.quote
                 )
@@ -424,7 +424,7 @@ def _exit_street_named(cast: Cast, words: str) -> str | None:
     crosswalk on Tamsin Street": the street the ego turns onto, named in the actor's words.
     Code, not a rule: a street's name is a capitalised word, and patterns ignore case."""
     for onto in _ONTO_STREET.finditer(cast.text):
-        if _subject(cast, onto.start()) == "ego":
+        if subject_of(cast, onto.start()) == "ego":
             named = re.search(rf"\b(?:on|across|of) {re.escape(onto.group(1))}", words)
             return named.group(0) if named else None
     return None
@@ -498,7 +498,7 @@ def moves(text: str, start: int, end: int) -> bool:
 def read_ego_on_ramp(reading: Reading) -> None:
     """Whether the ego is the one coming up the on-ramp, from words whose subject it is."""
     for hit in rulebook().hits(Fact.EGO_ON_RAMP, reading.cast.text):
-        if _subject(reading.cast, hit.start) == "ego":
+        if subject_of(reading.cast, hit.start) == "ego":
             reading.facts["ego_on_ramp"] = GroundedFact(
                 name="ego_on_ramp", value="true", source=FactSource.TEXT, quote=hit.quote
             )
@@ -514,7 +514,7 @@ def _verb_subject(cast: Cast, position: int) -> Mention | str | None:
     if re.search(r"\b(?:and|then)\s+(?:then\s+)?$", head, re.I):
         sentence_start = max(head.rfind(c) for c in ".;!?") + 1
         return cast.subject_after(sentence_start)
-    return _subject(cast, position)
+    return subject_of(cast, position)
 
 
 def read_ego_plan(reading: Reading) -> None:
@@ -539,7 +539,7 @@ def read_ego_stopped(reading: Reading) -> None:
     if told is not None and told.value != EgoManeuver.GO_STRAIGHT.value:
         return
     for hit in rulebook().hits(Fact.EGO_HELD, reading.cast.text):
-        if _subject(reading.cast, hit.start) == "ego":
+        if subject_of(reading.cast, hit.start) == "ego":
             reading.facts["ego_stopped"] = GroundedFact(
                 name="ego_stopped", value="true", source=FactSource.TEXT, quote=hit.quote
             )
