@@ -281,6 +281,14 @@ def read_compass(cast: Cast, mention: Mention) -> GroundedFact | None:
     if ego_bearing is None:
         return None
     for start, end in words_of(cast, mention):
+        curb = rulebook().first(Fact.CURB, cast.text, start, end)
+        side = {90: RelativePosition.ROADSIDE_RIGHT, 270: RelativePosition.ROADSIDE_LEFT}.get(
+            (_COMPASS[curb.value] - ego_bearing) % 360 if curb else -1
+        )
+        if curb is not None and side is not None:
+            return GroundedFact(
+                name="spawn_position", value=side.value, source=FactSource.TEXT, quote=curb.quote
+            )
         words = cast.text[max(0, start - 15) : end]
         bound = _heading(cast.text, max(0, start - 15), end)
         heading = (

@@ -78,6 +78,7 @@ class Fact(StrEnum):
     REQUIREMENT = "requirement"  # a constraint the text states (a RequirementKind)
     HEADING = "heading"  # a compass heading ("northbound", "from south to north")
     LANE_NUMBER = "lane_number"  # the numbered lane an actor is in ("#2 lane", "lane 3")
+    CURB = "curb"  # the compass side of the street an actor stands at ("the north curb")
     QUANTITY = "quantity"  # words about a speed, a distance or a moment ("at 30 mph", "suddenly")
 
 
@@ -229,6 +230,7 @@ def _values(fact: Fact) -> frozenset[str] | None:
         Fact.ROLE_CUE: frozenset({"occluder", "waits", "parked", "follows", "slow"}),
         Fact.REQUIREMENT: frozenset(RequirementKind),
         Fact.HEADING: frozenset({"north", "east", "south", "west"}),
+        Fact.CURB: frozenset({"north", "east", "south", "west"}),
         Fact.QUANTITY: frozenset({"speed", "distance", "timing"}),
         **{
             fact: frozenset({"true"})
