@@ -155,7 +155,9 @@ def answer_from_reading(reading: Reading) -> ExtractionAnswer | None:
         return facts[name].value if name in facts else default
 
     def words(stretches: list[tuple[int, int]]) -> str:
-        return " ".join(re.sub(r"\s+", " ", cast.text[a:b]).strip(" ,;.") for a, b in stretches[:2])
+        """The longest stretch of words about it: one piece of the text, so a quote."""
+        start, end = max(stretches, key=lambda s: s[1] - s[0])
+        return re.sub(r"\s+", " ", cast.text[start:end]).strip(" ,;.")
 
     def quoted(name: str) -> str:
         quote = facts[name].quote if name in facts else None
