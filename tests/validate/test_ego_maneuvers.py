@@ -239,18 +239,28 @@ CROSSING = ["spawn.junction_conflict_route", "behavior.drive_route"]
 
 
 def _check_yield(results: list[CheckResult]) -> None:
+    went = 0
     for result in results:
         assert result.simulation is not None and not result.simulation.collisions
         ego = _ego(result)
         other = _others(result)[0]
         junction = _first_junction(result, ego)
-        assert junction is not None, "the ego never went"
+        if junction is None:
+            # The crossing car is timed to reach the junction with the ego (issue 31): on a
+            # big junction it may not have cleared it when the scene ends, and the ego was
+            # right to wait the whole time.
+            last = other.trajectory[-1].step
+            other_inside = _junction_steps(result, other)
+            assert not other_inside or other_inside[-1] == last, "the ego never went"
+            continue
+        went += 1
         ego_inside = _junction_steps(result, ego, junction)
         other_inside = _junction_steps(result, other, junction)
         if other_inside and other_inside[0] < ego_inside[0]:
             # The crossing car was first: the ego waited until it had left the junction.
             assert ego_inside[0] > other_inside[-1]
         assert ego.lane_changes == 0 and not ego.weaving
+    assert went, "the ego never went in any run"
 
 
 @pytest.mark.parametrize("geometry", YIELDS)
