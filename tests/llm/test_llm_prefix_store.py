@@ -108,7 +108,12 @@ def test_generate_builds_the_store_once_and_writes_the_same_script(
     outputs = []
     for name in ("first", "second"):
         done = subprocess.run(
-            [sys.executable, "-m", "arise", "generate", description, "-o", str(tmp_path / name)],
+            # The rules read this description whole: --ask-model always makes the model read
+            # it too, so that the extraction prefix is built, then loaded.
+            [
+                *[sys.executable, "-m", "arise", "generate", description],
+                *["--ask-model", "always", "-o", str(tmp_path / name)],
+            ],
             env=env,
             capture_output=True,
             text=True,
