@@ -100,16 +100,17 @@ def test_warm_builds_and_rebuilds_a_damaged_entry(model_path: Path) -> None:
 def test_generate_builds_the_store_once_and_writes_the_same_script(
     model_path: Path, tmp_path: Path
 ) -> None:
+    # "suddenly": words of a moment, so the script's numbers are tuned (a second prefix).
     description = (
-        "The ego drives along a straight road when a pedestrian steps off the right "
-        "sidewalk and stops in its lane."
+        "The ego drives along a straight road when a pedestrian suddenly steps off the "
+        "right sidewalk and stops in its lane."
     )
     env = {**os.environ, "ARISE_CACHE_DIR": str(tmp_path / "cache"), "ARISE_LLM_CACHE": "off"}
     outputs = []
     for name in ("first", "second"):
         done = subprocess.run(
             # The rules read this description whole: --ask-model always makes the model read
-            # it too, so that the extraction prefix is built, then loaded.
+            # it too, so that the extraction prefix is built, then loaded, like the tuning's.
             [
                 *[sys.executable, "-m", "arise", "generate", description],
                 *["--ask-model", "always", "-o", str(tmp_path / name)],
