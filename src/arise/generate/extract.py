@@ -85,7 +85,7 @@ def extract_spec(
     if not ask_model:
         read = answer_from_reading(reading)
         if read is not None:
-            grounded = ground(condensed.text, read)
+            grounded = ground(condensed.text, read, reading)
             return Extraction(
                 spec=grounded.spec,
                 contradictions=find_contradictions(reading),
@@ -101,7 +101,7 @@ def extract_spec(
     )
     answer = completion.parsed
     assert isinstance(answer, ExtractionAnswer)
-    grounded = ground(condensed.text, answer)
+    grounded = ground(condensed.text, answer, reading)
     return Extraction(
         spec=grounded.spec,
         contradictions=find_contradictions(reading),

@@ -32,6 +32,7 @@ from arise.language.quotes import quote_in
 from arise.language.readers import (
     Reading,
     adversary_type_of,
+    choose_adversary,
     read_description,
     words_of,
 )
@@ -185,16 +186,21 @@ def answer_from_reading(reading: Reading) -> ExtractionAnswer | None:
     )
 
 
-def ground(description: str, answer: ExtractionAnswer) -> Grounded:
+def ground(description: str, answer: ExtractionAnswer, read: Reading | None = None) -> Grounded:
     """The spec of `description`: the fixed rules' readings first, the model's answers
-    where they rest on words of the text, neutral defaults for what the text leaves open."""
+    where they rest on words of the text, neutral defaults for what the text leaves open.
+    `read`, the description's reading already made, is used again when the answer's
+    adversary is the one it chose (the reading would be the same)."""
     notes: list[str] = []
     adversary_quote = answer.adversary if quote_in(description, answer.adversary) else None
     if answer.adversary and adversary_quote is None:
         notes.append(
             f"adversary: the model's words {answer.adversary!r} are not in the description"
         )
-    reading = read_description(description, adversary_quote)
+    if read is not None and choose_adversary(read.cast, adversary_quote) is read.adversary:
+        reading = read
+    else:
+        reading = read_description(description, adversary_quote)
     facts = dict(reading.facts)
     adversary_class: ActorClass | None = None
     if reading.adversary is not None and (kind := adversary_type_of(reading.adversary.cls)):

@@ -333,12 +333,11 @@ class Generator:
             params: dict[str, str] = {}
             tunes = options.mode is not Mode.CHATSCENE and bool(run.retrieval.chosen)
             if tunes and not spec.quantities_stated:
-                tunes = False
                 run.retrieval.notes.append(
                     "parameters: the description gives no speed, distance or moment; "
                     "the defaults stand (no tuning call)"
                 )
-            if tunes:
+            elif tunes:
                 self.provider.label = "adapt"
                 params, notes = tune_params(
                     run.description,

@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import re
 from dataclasses import dataclass, field, replace
+from functools import cache
 
 from arise.language.lexicon import class_pattern, lexicon, noun_class
 from arise.vocabulary import ActorClass
@@ -407,6 +408,13 @@ _DETERMINER = re.compile(
 )
 
 
+@cache
+def _bare_modifiers() -> frozenset[str]:
+    """Words that open a noun phrase with no article: the lexicon's `bare_modifier` and
+    colours."""
+    return frozenset(lexicon().classes["bare_modifier"] + lexicon().colours)
+
+
 def phrase_start(text: str, start: int) -> int:
     """Where the noun phrase of the noun at `start` begins: the nearest article or number
     at most three words before it ("a parked delivery van"), else the noun itself."""
@@ -419,7 +427,7 @@ def phrase_start(text: str, start: int) -> int:
             return max(0, start - 40) + word.start()
     # No article: the modifiers right before the noun ("oncoming moto"), if any.
     opened = start
-    modifiers = lexicon().classes["bare_modifier"] + lexicon().colours
+    modifiers = _bare_modifiers()
     for word in reversed(words[-2:]):
         gap = text[max(0, start - 40) + word.end() : opened]
         if word.group(0).lower() not in modifiers or re.search(r"[.;,!?()]", gap):

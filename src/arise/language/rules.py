@@ -131,13 +131,13 @@ class CompiledRule:
         """Matches that lie inside text[start:end] and inside no `unless` match."""
         stop = len(text) if end is None else end
         vetoes = [m.span() for p in self.unless for m in p.finditer(text)]
+        words = lexicon().slot_words
         for pattern in self.when:
             for match in pattern.finditer(text, start):
                 if match.end() > stop:
                     break
                 if any(a <= match.start() and match.end() <= b for a, b in vetoes):
                     continue
-                words = lexicon().slot_words
                 slots = {
                     k: words.get(v.lower(), v.lower()) for k, v in match.groupdict().items() if v
                 }
