@@ -85,6 +85,8 @@ class DevSet(StrEnum):
     CRASH_REPORT = "crash_report"
     # the held-apart set's six styles, written later by us to tune on (devsets/README.md)
     STYLES = "styles"
+    # many ways of saying where a road user starts and moves (devsets/README.md)
+    VARIANTS = "variants"
     # tests/heldapart: measured only, never tuned on (its README states the rule)
     HELDAPART = "heldapart"
 
