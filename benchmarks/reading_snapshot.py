@@ -155,23 +155,21 @@ def _adversary_direction(spec: ScenarioSpec) -> Direction | None:
 def _pair(
     item: LabeledDescription, spec: ScenarioSpec
 ) -> list[tuple[LabeledActor, ScenarioSpec | Actor | None]]:
-    """Each labeled actor with what the rules read of it: the adversary's spec, an actor of
-    `spec.actors` of its class, or None (not read)."""
-    labeled = list(item.truth.actors)
-    adversary = next((a for a in labeled if a.role == "adversary"), None)
-    if adversary is None:
-        adversary = next((a for a in labeled if a.cls == spec.scenic_class), None)
-    others = list(spec.actors)
-    pairs: list[tuple[LabeledActor, ScenarioSpec | Actor | None]] = []
-    for actor in labeled:
-        if actor is adversary and not spec.no_adversary:
-            pairs.append((actor, spec))
-            continue
-        match = next((o for o in others if o.scenic_class == actor.cls), None)
-        if match is not None:
-            others.remove(match)
-        pairs.append((actor, match))
-    return pairs
+    """Each labeled actor with what the rules read of it, matched by class (the labeled
+    adversary first): the read adversary (the spec), an actor of `spec.actors`, or None (not
+    read). A labeled adversary of no read class is held against the read adversary."""
+    labeled = sorted(item.truth.actors, key=lambda a: a.role != "adversary")
+    read: list[ScenarioSpec | Actor] = [] if spec.no_adversary else [spec]
+    read += spec.actors
+    found: dict[int, ScenarioSpec | Actor] = {}
+    for index, actor in enumerate(labeled):
+        cls = [r.scenic_class for r in read]
+        if actor.cls in cls:
+            found[index] = read.pop(cls.index(actor.cls))
+    for index, actor in enumerate(labeled):
+        if index not in found and actor.role == "adversary" and spec in read:
+            found[index] = read.pop(read.index(spec))
+    return [(actor, found.get(index)) for index, actor in enumerate(labeled)]
 
 
 def score_item(item: LabeledDescription, spec: ScenarioSpec) -> dict[str, list[bool | None]]:
