@@ -20,7 +20,7 @@ from rich.table import Table
 from arise import terminal
 from arise.evaluate.search.errors import SearchError
 from arise.evaluate.search.executor import Executor
-from arise.evaluate.search.expression import FACTS
+from arise.evaluate.search.expression import NAMES
 from arise.evaluate.search.objective import Objective
 from arise.evaluate.search.outputs import describe
 from arise.evaluate.search.runner import SEARCH_SPAWN_ATTEMPTS, SearchResult
@@ -44,12 +44,25 @@ The script's free parameters (`param OPT_X = Range(a, b)`, VerifaiRange, Verifai
 validator with them fixed, and the trace scores it (smaller is more critical). Every trial
 goes into OUT/search.sqlite as it finishes: the same command resumes a killed search.
 
+With --agent, a driving agent (as `arise drive --agent`: idm, cautious, blind, FILE.py:Class
+or an entry point) drives the ego in every trial, and the search looks for the values where
+that agent fails (a collision, or a TTC under 1 s). --objective score minimises SafeBench's
+overall score of its drive.
+
 OUT gets critical/scenario.scenic (the best trial's script, values fixed) with its replay
 and OpenSCENARIO file, trials.csv, objective.png and search.json.
 
 Examples:
 
   arise search out/demo --trials 30
+
+  arise search out/demo --agent idm --trials 30
+
+  arise search my.scenic --agent blind --objective collision
+
+  arise search my.scenic --agent my_agent.py:Careful --objective score
+
+  arise search my.scenic --agent idm --objective custom --expression 'overall_score + red_lights_run'
 
   arise search my.scenic --sampler ce,random,halton --objective min-ttc --seed 1
 
@@ -78,16 +91,16 @@ def search_command(
     objective: Annotated[
         str,
         typer.Option(
-            help="What to minimise: min-ttc, min-distance, collision, or custom (with "
-            "--expression)."
+            help="What to minimise: min-ttc, min-distance, collision, score (SafeBench's "
+            "overall score of the ego's drive, 1 = perfect), or custom (with --expression)."
         ),
     ] = "min-ttc",
     expression: Annotated[
         str | None,
         typer.Option(
             help="The custom objective, smaller = more critical: arithmetic over "
-            + ", ".join(FACTS)
-            + " (min, max, abs, comparisons and 'a if c else b' too). "
+            + ", ".join(NAMES)
+            + " (min, max, abs, comparisons and 'a if c else b' too; docs/search.md). "
             "Example: --objective custom --expression 'min_ttc + 0.2 * min_distance'"
         ),
     ] = None,
@@ -98,6 +111,14 @@ def search_command(
             "several, comma-separated, are compared."
         ),
     ] = "ce",
+    agent: Annotated[
+        str | None,
+        typer.Option(
+            help="Who drives the ego in every trial: scripted (the script, the default), "
+            "idm, cautious, blind, FILE.py:ClassName or an entry point of 'arise.agents' "
+            "(as `arise drive --agent`)."
+        ),
+    ] = None,
     trials: Annotated[int, typer.Option(help="Trials per sampler.")] = 30,
     workers: Annotated[int, typer.Option(help="Trials run at the same time.")] = 1,
     executor: Annotated[str, typer.Option(help="local (worker processes) or ray.")] = "local",
@@ -142,6 +163,7 @@ def search_command(
             steps=steps, timeout=timeout, map_dir=map_dir, spawn_attempts=spawn_attempts
         ),
         replay=replay,
+        agent=agent,
     )
     with _SearchPrinter() as printer:
         session = search(request, printer.on_event)  # Ctrl-C: Interrupted, exit 130
@@ -222,11 +244,13 @@ class _SearchPrinter:
 def _print_table(results: list[SearchResult]) -> None:
     if not results:
         return
-    objective = results[0].config.objective
+    config = results[0].config
+    objective = config.objective
+    driver = "" if config.agent is None else f" with the agent {config.agent_label}"
     table = Table(
         title=terminal.text(
-            terminal.name(results[0].config.script.name),
-            f": {objective.label}, smaller is more critical",
+            terminal.name(config.script.name),
+            f"{driver}: {objective.label}, smaller is more critical",
         )
     )
     for column in (

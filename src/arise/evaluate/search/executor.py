@@ -61,7 +61,10 @@ class LocalRunner:
 
     def __init__(self, workers: int, options: CheckOptions):
         self.options = options
-        self.pool = WorkerPool(size=max(1, workers), memory_mb=options.memory_mb)
+        # A user's agent (options.agent) is imported by each worker before confinement.
+        self.pool = WorkerPool(
+            size=max(1, workers), memory_mb=options.memory_mb, agent=options.agent
+        )
         self.threads = ThreadPoolExecutor(max_workers=max(1, workers))
 
     def run(self, jobs: Sequence[TrialJob]) -> Iterator[Finished]:
@@ -82,7 +85,7 @@ class _RayTrialActor:
 
     def __init__(self, options_json: str):
         self.options = CheckOptions.model_validate_json(options_json)
-        self.pool = WorkerPool(size=1, memory_mb=self.options.memory_mb)
+        self.pool = WorkerPool(size=1, memory_mb=self.options.memory_mb, agent=self.options.agent)
 
     def run(self, job: dict[str, Any]) -> dict[str, Any]:
         result, seconds = check_job(TrialJob(**job), self.options, self.pool)

@@ -1,10 +1,12 @@
-"""A user's own objective: an arithmetic expression over a trial's trace facts.
+"""A user's own objective: an arithmetic expression over a trial's trace facts and its
+driving metrics.
 
 `--objective custom --expression "min_ttc + 0.2 * min_distance"` minimises what the user
-writes, with the same facts the built-in objectives read. It is parsed once, before any
-trial, into a small tree of allowed nodes (numbers, the fact names, + - * / **, unary
-minus, comparisons, `a if c else b`, min, max, abs); nothing else is evaluated, so the
-expression cannot reach Python.
+writes, with the same facts the built-in objectives read, and the metrics of `arise
+drive` (docs/agents.md) by their column names (`overall_score`, `red_lights_run`, ...).
+It is parsed once, before any trial, into a small tree of allowed nodes (numbers, the
+names, + - * / **, unary minus, comparisons, `a if c else b`, min, max, abs); nothing
+else is evaluated, so the expression cannot reach Python.
 """
 
 from __future__ import annotations
@@ -18,13 +20,41 @@ from typing import Any
 
 from arise.evaluate.search.errors import SearchError
 
-#: The names an expression may use, and what each means (shown in the help and errors).
+#: The trace facts of the ego against the adversary (`arise.evaluate.criticality`).
 FACTS: dict[str, str] = {
     "min_ttc": "smallest time-to-collision, s (10 when the two never close in)",
     "min_distance": "closest approach of the footprints, m (0 at contact)",
     "collision": "1 when ego and adversary touched, else 0",
-    "route_completion": "share of its route the ego drove, 0 to 1",
 }
+
+#: The driving metrics of the run, as `arise drive` names them (`arise.drive.measure`;
+#: docs/agents.md#metrics). `route_completion` is SafeBench's, along the ego's route. A
+#: metric with no value for a run (`min_ttc_s`, `pet_s`: never on course to touch, paths
+#: never cross) reads `NEUTRAL_TIME`, as far from a conflict as `min_ttc` gets.
+DRIVE_METRICS: dict[str, str] = {
+    "collision_count": "contacts of the ego with any other agent",
+    "red_lights_run": "red lights the ego ran (RR)",
+    "stop_signs_run": "stop signs the ego ran (SS)",
+    "out_of_road_m": "metres driven off the drivable area (OR)",
+    "distance_to_route_m": "mean distance of the ego to its route, m",
+    "route_following": "1 - min(1, distance_to_route_m / 5), 0 to 1 (RF)",
+    "route_completion": "share of its route the ego drove, 0 to 1 (Comp)",
+    "time_spent_s": "the episode's duration, s (TS)",
+    "mean_acceleration": "mean magnitude of the ego's acceleration, m/s^2 (ACC)",
+    "mean_yaw_velocity": "mean magnitude of the ego's yaw rate, rad/s (YV)",
+    "lane_invasions": "lane boundaries crossed outside junctions (LI)",
+    "overall_score": "SafeBench's overall score, 0 to 1, higher is better (OS)",
+    "min_ttc_s": "smallest TTC with any agent, s (10 when none)",
+    "pet_s": "post-encroachment time with the adversary, s (10 when none)",
+    "road_checked": "1 when a road network was at hand, else 0",
+}
+#: What a drive metric without a value reads (s): no conflict, like `min_ttc`'s cap.
+NEUTRAL_TIME = 10.0
+#: The value of each metric that may have none, when it has none (every other: 0).
+NO_VALUE: dict[str, float] = {"min_ttc_s": NEUTRAL_TIME, "pet_s": NEUTRAL_TIME}
+
+#: Every name an expression may use, and what each means (shown in the help and errors).
+NAMES: dict[str, str] = {**FACTS, **DRIVE_METRICS}
 
 _BINARY: dict[type[ast.operator], Callable[[float, float], float]] = {
     ast.Add: operator.add,
@@ -47,6 +77,17 @@ _MAX_LENGTH = 300
 class Expression:
     text: str
     tree: ast.expr
+
+    @property
+    def names(self) -> frozenset[str]:
+        """The names it reads."""
+        nodes = ast.walk(self.tree)
+        return frozenset(n.id for n in nodes if isinstance(n, ast.Name) and n.id in NAMES)
+
+    @property
+    def needs_metrics(self) -> bool:
+        """Does it read a driving metric (measured on the road network)?"""
+        return any(name in DRIVE_METRICS for name in self.names)
 
     def value(self, facts: Mapping[str, float]) -> float:
         """The score of one trial; a value that is not a finite number is an error."""
@@ -75,12 +116,12 @@ def parse_expression(text: str) -> Expression:
 
 
 def _check(node: ast.AST) -> None:
-    allowed = ", ".join(FACTS)
+    allowed = ", ".join(NAMES)
     if isinstance(node, ast.Constant):
         if isinstance(node.value, bool) or not isinstance(node.value, int | float):
             raise SearchError(f"only numbers may appear as constants, not {node.value!r}")
     elif isinstance(node, ast.Name):
-        if node.id not in FACTS:
+        if node.id not in NAMES:
             raise SearchError(f"unknown name '{node.id}' in the expression; use {allowed}")
     elif isinstance(node, ast.BinOp) and type(node.op) in _BINARY:
         _check(node.left)

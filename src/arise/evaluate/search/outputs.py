@@ -12,6 +12,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from arise.drive.measure import MetricRow
 from arise.evaluate.search.objective import CRITICAL_TTC, Objective, outcome
 from arise.evaluate.search.runner import SearchResult
 from arise.evaluate.search.store import TrialRecord
@@ -28,6 +29,8 @@ class SearchFiles:
     critical_script: Path | None = None
     replay: list[Path] = field(default_factory=list)
     notes: list[str] = field(default_factory=list)
+    #: The driving metrics of the critical script's replay (`arise drive`'s row), when run.
+    critical_metrics: MetricRow | None = None
 
 
 def _fmt(value: float | None, unit: str = "") -> str:
@@ -39,20 +42,27 @@ def describe(trial: TrialRecord, objective: Objective) -> str:
     facts = trial.outcome
     if not facts.ok:
         return f"trial {trial.index + 1}: did not run ({facts.message})"
+    score = "" if facts.overall_score is None else f", overall score {facts.overall_score:.3f}"
+    unit = f" {objective.unit}" if objective.unit else ""
     return (
-        f"trial {trial.index + 1}: {objective.value} {_fmt(facts.value)} {objective.unit}; "
+        f"trial {trial.index + 1}: {objective.value} {_fmt(facts.value)}{unit}; "
         f"collision {'yes' if facts.collision else 'no'}, min TTC {_fmt(facts.min_ttc, ' s')}, "
-        f"min distance {_fmt(facts.min_distance, ' m')}"
+        f"min distance {_fmt(facts.min_distance, ' m')}{score}"
     )
 
 
 def critical_header(result: SearchResult, trial: TrialRecord) -> str:
     config = result.config
+    if config.agent is None:
+        who, again = "", f"arise check scenario.scenic --seed {config.seed}"
+    else:
+        who = f"# The agent '{config.agent_label}' drove the ego in every trial.\n"
+        again = f"arise drive scenario.scenic --agent {config.agent} --seed {config.seed}"
     return (
         f"# arise search: the most critical instance of {config.script.name} found by VerifAI's "
         f"'{config.sampler.value}' sampler in {len(result.trials)} trials (seed {config.seed})\n"
-        f"# {describe(trial, config.objective)}\n"
-        f"# The same scene again: arise check scenario.scenic --seed {config.seed}\n"
+        f"{who}# {describe(trial, config.objective)}\n"
+        f"# The same scene again: {again}\n"
     )
 
 
@@ -63,18 +73,22 @@ def write_trials_csv(results: Sequence[SearchResult], path: Path) -> Path:
     buffer = io.StringIO()
     writer = csv.writer(buffer)
     writer.writerow(
-        ["sampler", "objective", "seed", "trial", *names, "ok", "score", "best_so_far"]
-        + ["collision", "min_ttc", "min_distance", "critical", "seconds", "message"]
+        ["sampler", "agent", "objective", "seed", "trial", *names, "ok", "score", "best_so_far"]
+        + ["collision", "min_ttc", "min_distance", "critical", "overall_score", "seconds"]
+        + ["message"]
     )
     for result in results:
+        config = result.config
         curve = result.best_so_far()
         for trial, best in zip(result.trials, curve, strict=True):
             facts = trial.outcome
+            overall = "" if facts.overall_score is None else facts.overall_score
             writer.writerow(
-                [result.config.sampler.value, result.config.objective.value, result.config.seed]
+                [config.sampler.value, config.agent_label, config.objective.value, config.seed]
                 + [trial.index + 1, *[trial.values.get(n, "") for n in names]]
                 + [int(facts.ok), facts.value, best, int(facts.collision), facts.min_ttc]
-                + [facts.min_distance, int(facts.critical), facts.seconds, facts.message or ""]
+                + [facts.min_distance, int(facts.critical), overall, facts.seconds]
+                + [facts.message or ""]
             )
     return write_text_atomic(path, buffer.getvalue())
 
@@ -125,6 +139,7 @@ def summary(result: SearchResult) -> dict[str, Any]:
         "script": str(result.config.script),
         "key": result.key,
         "sampler": result.config.sampler.value,
+        "agent": result.config.agent_label,
         "objective": result.config.objective.value,
         "seed": result.config.seed,
         "trials": len(result.trials),
@@ -133,6 +148,7 @@ def summary(result: SearchResult) -> dict[str, Any]:
         "critical_trials": sum(t.outcome.critical for t in result.trials),
         "first_found": result.first_found,
         "first_critical": result.first_critical,
+        "first_collision": result.first_collision,
         "trial_seconds": round(sum(t.outcome.seconds for t in result.trials), 1),
         "params": [
             {"name": p.name, "kind": p.kind.value, "range": p.describe()} for p in result.params
@@ -143,18 +159,31 @@ def summary(result: SearchResult) -> dict[str, Any]:
     }
 
 
+@dataclass
+class CriticalInstance:
+    """The best trial's script as written, and what running it again left."""
+
+    script: Path | None
+    replay: list[Path] = field(default_factory=list)
+    notes: list[str] = field(default_factory=list)
+    metrics: MetricRow | None = None  # its driving metrics, when measured
+
+
 def write_critical(
     result: SearchResult,
     out_dir: Path,
     *,
     replay: bool = True,
     pool: WorkerPool | None = None,
-) -> tuple[Path | None, list[Path], list[str]]:
-    """critical/scenario.scenic (the best trial's script) and, when it runs again, its
-    trace, replay and OpenSCENARIO export beside it."""
+) -> CriticalInstance:
+    """critical/scenario.scenic (the best trial's script) and, when it runs again (with
+    the search's agent in the ego's seat), its trace, replay and OpenSCENARIO export
+    beside it."""
     best = result.best
     if best is None:
-        return None, [], ["no trial ran: there is no critical instance to write"]
+        return CriticalInstance(
+            None, notes=["no trial ran: there is no critical instance to write"]
+        )
     folder = out_dir / "critical"
     for relative, data in result.files.items():
         write_bytes_atomic(folder / relative, data)
@@ -163,17 +192,22 @@ def write_critical(
         critical_header(result, best) + result.concrete_script(best.values),
     )
     if not replay:
-        return script, [], []
+        return CriticalInstance(script, metrics=best.outcome.metrics)
     from arise.present.errors import PresentError
     from arise.present.outputs import write_run_files
     from arise.present.source import from_check
 
-    options: CheckOptions = result.config.check.model_copy(
-        update={"seed": result.config.seed, "png": None}
-    )
+    config = result.config
+    options: CheckOptions = config.check.model_copy(update={"seed": config.seed, "png": None})
     checked = check(script, options, pool=pool)
     notes: list[str] = []
-    again = outcome(checked, result.config.objective, 0.0, result.config.expression)
+    again = outcome(
+        checked,
+        config.objective,
+        0.0,
+        config.expression,
+        metrics_steps=options.steps if config.measures else None,
+    )
     if again.value != best.outcome.value:
         notes.append(
             f"the critical script scored {_fmt(again.value)} when run again "
@@ -184,10 +218,12 @@ def write_critical(
             from_check(script, checked, options), folder, map_dir=options.map_dir
         )
     except PresentError as error:
-        return script, [], [*notes, f"no replay: {error}"]
+        return CriticalInstance(
+            script, notes=[*notes, f"no replay: {error}"], metrics=again.metrics
+        )
     written = [files.trace, files.replay.gif, files.replay.html, files.export.xosc]
     written += [files.export.xodr] if files.export.xodr is not None else []
-    return script, written, [*notes, *files.export.notes]
+    return CriticalInstance(script, written, [*notes, *files.export.notes], again.metrics)
 
 
 def write_outputs(
@@ -210,12 +246,18 @@ def write_outputs(
     ranked = [r for r in results if r.best is not None]
     if ranked:
         winner = min(ranked, key=lambda r: (r.best.outcome.value, r.best.index))  # type: ignore[union-attr]
-        script, replayed, notes = write_critical(winner, out_dir, replay=replay, pool=pool)
-        files.critical_script, files.replay, files.notes = script, replayed, notes
+        critical = write_critical(winner, out_dir, replay=replay, pool=pool)
+        files.critical_script, files.replay = critical.script, critical.replay
+        files.notes, files.critical_metrics = critical.notes, critical.metrics
     else:
         files.notes.append("no trial ran: there is no critical instance to write")
-    document = {"searches": [summary(r) for r in results], "notes": files.notes}
+    document: dict[str, Any] = {
+        "agent": results[0].config.agent_label if results else None,
+        "searches": [summary(r) for r in results],
+        "notes": files.notes,
+    }
     if files.critical_script is not None:
         document["critical_script"] = str(files.critical_script)
+        document["critical_metrics"] = files.critical_metrics
     write_text_atomic(files.summary, json.dumps(document, indent=2) + "\n")
     return files

@@ -16,6 +16,9 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from arise.agents import AgentError
+from arise.agents.types import BuiltinAgent
+from arise.drive.agent_names import agent_label, resolve_agent
 from arise.evaluate.search.errors import NoFreeParameters, SearchError, StoreMismatch
 from arise.evaluate.search.executor import Executor, TrialJob, TrialRunner, make_runner
 from arise.evaluate.search.expression import Expression
@@ -24,12 +27,13 @@ from arise.evaluate.search.objective import (
     TTC_CAP,
     Objective,
     TrialOutcome,
+    needs_metrics,
     outcome,
 )
 from arise.evaluate.search.sampler import ParamSampler, Proposal, SamplerKind
 from arise.evaluate.search.space import FreeParam, ParamValue, find_free_params, fix_params
 from arise.evaluate.search.store import SearchRow, SearchStore, TrialRecord
-from arise.validate import CheckOptions
+from arise.validate import CheckOptions, CheckResult
 from arise.validate.script_info import read_script_info
 
 #: Scenes a trial may try before its values count as failed: a value that makes every
@@ -58,6 +62,21 @@ class SearchConfig:
     ray_address: str | None = None
     #: the user's objective when ``objective`` is CUSTOM (checked by `parse_expression`)
     expression: Expression | None = None
+
+    @property
+    def agent(self) -> str | None:
+        """Who drives the ego in every trial (`check.agent`); None: the script's own ego."""
+        return self.check.agent
+
+    @property
+    def agent_label(self) -> str:
+        return "scripted" if self.agent is None else agent_label(self.agent)
+
+    @property
+    def measures(self) -> bool:
+        """Are the trials' driving metrics measured? With an agent (what it did is the
+        point), or when the objective reads them."""
+        return self.agent is not None or needs_metrics(self.objective, self.expression)
 
 
 @dataclass
@@ -88,6 +107,12 @@ class SearchResult:
         found = [t.index for t in self.trials if t.outcome.critical]
         return min(found) + 1 if found else None
 
+    @property
+    def first_collision(self) -> int | None:
+        """1-based number of the first trial in which ego and adversary touched."""
+        found = [t.index for t in self.trials if t.outcome.ok and t.outcome.collision]
+        return min(found) + 1 if found else None
+
     def best_so_far(self) -> list[float | None]:
         best: float | None = None
         curve: list[float | None] = []
@@ -101,6 +126,16 @@ class SearchResult:
     def concrete_script(self, values: dict[str, ParamValue]) -> str:
         """The script with these values fixed (the old ranges kept in comments)."""
         return fix_params(self.script_text, self.params, values)
+
+
+def search_agent(name: str | None) -> str | None:
+    """The agent as the workers are told it (`arise drive --agent`'s names), or None when
+    the script drives: no name, or `scripted` (the same runs, so the same search).
+    AgentError, one line, for a name that cannot be an agent."""
+    if name is None:
+        return None
+    text = resolve_agent(name)
+    return None if text == BuiltinAgent.SCRIPTED.value else text
 
 
 def resolve_script(target: Path) -> Path:
@@ -120,7 +155,7 @@ def _read(path: Path) -> str:
 
 
 def search_key(text: str, config: SearchConfig) -> str:
-    """Same script, sampler, objective, seed and check settings: the same search."""
+    """Same script, sampler, objective, seed, check settings and agent: the same search."""
     identity = {
         "script": hashlib.sha256(text.encode()).hexdigest(),
         "sampler": config.sampler.value,
@@ -133,6 +168,10 @@ def search_key(text: str, config: SearchConfig) -> str:
     }
     if config.expression is not None:  # only then: the keys of earlier searches stay
         identity["expression"] = config.expression.text
+        if config.expression.needs_metrics:  # route_completion was once the trace's estimate
+            identity["metrics"] = "drive"
+    if config.agent is not None:  # likewise: a search without an agent keeps its key
+        identity["agent"] = config.agent
     return hashlib.sha256(json.dumps(identity, sort_keys=True).encode()).hexdigest()[:16]
 
 
@@ -158,7 +197,16 @@ def _failed_score(objective: Objective, trials: list[TrialRecord]) -> float:
     seen = [t.outcome.value for t in trials if t.outcome.ok and t.outcome.value is not None]
     if seen:
         return max(seen)
+    if objective is Objective.SCORE:
+        return 1.0  # a perfect drive: nothing found
     return TTC_CAP if objective is Objective.MIN_TTC else FAILED_DISTANCE
+
+
+def _raise_for_agent(result: CheckResult) -> None:
+    """An agent that cannot be made (no such class, an import that fails) fails every trial
+    the same way: stop at once, and save nothing a fixed agent would find done."""
+    if result.diagnostic is not None and result.diagnostic.error_type == AgentError.__name__:
+        raise AgentError(result.diagnostic.message)
 
 
 def prepare(config: SearchConfig, store: SearchStore) -> tuple[SearchResult, int]:
@@ -193,6 +241,7 @@ def prepare(config: SearchConfig, store: SearchStore) -> tuple[SearchResult, int
                 params=[
                     {"name": p.name, "kind": p.kind.value, "range": p.describe()} for p in params
                 ],
+                agent=config.agent,
             )
         )
     return SearchResult(key=key, config=config, script_text=text, params=params), batch
@@ -213,6 +262,7 @@ def run_search(
         result.params, config.sampler, config.seed, _critical_level(config.objective)
     )
     options = config.check.model_copy(update={"seed": config.seed, "png": None})
+    metrics_steps = options.steps if config.measures else None
     own_runner = runner is None
     active: TrialRunner | None = runner
     try:
@@ -249,7 +299,14 @@ def run_search(
                         config.executor, config.workers, options, config.ray_address
                     )
                 for job, check_result, seconds in active.run(jobs):
-                    verdict = outcome(check_result, config.objective, seconds, config.expression)
+                    _raise_for_agent(check_result)
+                    verdict = outcome(
+                        check_result,
+                        config.objective,
+                        seconds,
+                        config.expression,
+                        metrics_steps=metrics_steps,
+                    )
                     record = TrialRecord(job.index, proposals[job.index - index].values, verdict)
                     store.save(result.key, record)
                     outcomes[job.index] = verdict

@@ -17,7 +17,13 @@ from arise.evaluate.search.executor import Executor
 from arise.evaluate.search.expression import parse_expression
 from arise.evaluate.search.objective import Objective
 from arise.evaluate.search.outputs import SearchFiles, write_outputs
-from arise.evaluate.search.runner import SearchConfig, SearchResult, resolve_script, run_search
+from arise.evaluate.search.runner import (
+    SearchConfig,
+    SearchResult,
+    resolve_script,
+    run_search,
+    search_agent,
+)
 from arise.evaluate.search.sampler import SamplerKind
 from arise.evaluate.search.store import SearchStore, TrialRecord
 from arise.validate import CheckOptions
@@ -41,6 +47,8 @@ class SearchRequest:
     out: Path | None = None
     #: Run the critical script again for its replay and .xosc.
     replay: bool = True
+    #: Who drives the ego in every trial (as `arise drive --agent`); None: the script.
+    agent: str | None = None
 
 
 @dataclass(frozen=True)
@@ -82,10 +90,11 @@ def output_folder(target: Path, script: Path, out: Path | None) -> Path:
 
 def search(request: SearchRequest, on_event: OnSearchEvent | None = None) -> SearchSession:
     """Search the script with each sampler in turn, then write the critical instance, the
-    trials, the plot and the summary. SearchError for a bad target or objective, before any
-    file is written; Ctrl-C raises Interrupted (the finished trials are saved)."""
+    trials, the plot and the summary. SearchError for a bad target or objective, AgentError
+    for a name that cannot be an agent, before any file is written; Ctrl-C raises Interrupted (the finished trials are saved)."""
     emit = on_event or (lambda event: None)
     script = resolve_script(request.target)
+    check = request.check.model_copy(update={"agent": search_agent(request.agent)})
     custom = request.objective is Objective.CUSTOM
     if request.expression is not None and not custom:
         raise SearchError("--expression goes with --objective custom")
@@ -105,7 +114,7 @@ def search(request: SearchRequest, on_event: OnSearchEvent | None = None) -> Sea
                 workers=request.workers,
                 executor=request.executor,
                 seed=request.seed,
-                check=request.check,
+                check=check,
                 ray_address=request.ray_address,
             )
             emit(SamplerStarted(config))

@@ -23,16 +23,19 @@ SCHEMA = """
 CREATE TABLE IF NOT EXISTS searches (
     key TEXT PRIMARY KEY, script TEXT NOT NULL, script_sha256 TEXT NOT NULL,
     sampler TEXT NOT NULL, objective TEXT NOT NULL, seed INTEGER NOT NULL,
-    batch INTEGER NOT NULL, params TEXT NOT NULL, created_at TEXT NOT NULL
+    batch INTEGER NOT NULL, params TEXT NOT NULL, created_at TEXT NOT NULL, agent TEXT
 );
 CREATE TABLE IF NOT EXISTS trials (
     search TEXT NOT NULL REFERENCES searches(key) ON DELETE CASCADE,
     idx INTEGER NOT NULL, params TEXT NOT NULL, ok INTEGER NOT NULL, value REAL,
     collision INTEGER NOT NULL, min_ttc REAL, min_distance REAL, message TEXT,
-    seconds REAL NOT NULL, finished_at TEXT NOT NULL,
+    seconds REAL NOT NULL, finished_at TEXT NOT NULL, metrics TEXT,
     PRIMARY KEY (search, idx)
 );
 """
+#: Columns added since the first schema, added to an older database when it is opened:
+#: the agent in the ego's seat (none: the script drove) and a trial's driving metrics.
+ADDED_COLUMNS = (("searches", "agent", "TEXT"), ("trials", "metrics", "TEXT"))
 
 
 @dataclass(frozen=True)
@@ -54,6 +57,7 @@ class SearchRow:
     seed: int
     batch: int
     params: list[dict[str, Any]]
+    agent: str | None = None
 
 
 class SearchStore:
@@ -64,19 +68,29 @@ class SearchStore:
             self._db = sqlite3.connect(path, check_same_thread=False)
             self._db.execute("PRAGMA foreign_keys = ON")
             self._db.executescript(SCHEMA)
+            self._add_columns()
         except sqlite3.DatabaseError as error:
             raise SearchError(f"{path}: not a search database ({error})") from error
 
+    def _add_columns(self) -> None:
+        for table, column, kind in ADDED_COLUMNS:
+            present = {row[1] for row in self._db.execute(f"PRAGMA table_info({table})")}
+            if column not in present:
+                with self._db:
+                    self._db.execute(f"ALTER TABLE {table} ADD COLUMN {column} {kind}")
+
     def search(self, key: str) -> SearchRow | None:
         row = self._db.execute(
-            "SELECT key, script, script_sha256, sampler, objective, seed, batch, params "
+            "SELECT key, script, script_sha256, sampler, objective, seed, batch, params, agent "
             "FROM searches WHERE key = ?",
             (key,),
         ).fetchone()
         if row is None:
             return None
-        key, script, digest, sampler, objective, seed, batch, params = row
-        return SearchRow(key, script, digest, sampler, objective, seed, batch, json.loads(params))
+        key, script, digest, sampler, objective, seed, batch, params, agent = row
+        return SearchRow(
+            key, script, digest, sampler, objective, seed, batch, json.loads(params), agent
+        )
 
     def searches(self) -> list[SearchRow]:
         keys = [k for (k,) in self._db.execute("SELECT key FROM searches ORDER BY created_at")]
@@ -85,7 +99,8 @@ class SearchStore:
     def add_search(self, row: SearchRow) -> None:
         with self._db:
             self._db.execute(
-                "INSERT OR IGNORE INTO searches VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?)",
+                "INSERT OR IGNORE INTO searches (key, script, script_sha256, sampler, objective, "
+                "seed, batch, params, created_at, agent) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?)",
                 (
                     row.key,
                     row.script,
@@ -96,6 +111,7 @@ class SearchStore:
                     row.batch,
                     json.dumps(row.params),
                     datetime.now(UTC).isoformat(timespec="seconds"),
+                    row.agent,
                 ),
             )
 
@@ -103,7 +119,9 @@ class SearchStore:
         result = record.outcome
         with self._db:
             self._db.execute(
-                "INSERT OR REPLACE INTO trials VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)",
+                "INSERT OR REPLACE INTO trials (search, idx, params, ok, value, collision, "
+                "min_ttc, min_distance, message, seconds, finished_at, metrics) "
+                "VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)",
                 (
                     key,
                     record.index,
@@ -116,13 +134,14 @@ class SearchStore:
                     result.message,
                     result.seconds,
                     datetime.now(UTC).isoformat(timespec="seconds"),
+                    None if result.metrics is None else json.dumps(result.metrics),
                 ),
             )
 
     def trials(self, key: str) -> dict[int, TrialRecord]:
         rows = self._db.execute(
-            "SELECT idx, params, ok, value, collision, min_ttc, min_distance, message, seconds "
-            "FROM trials WHERE search = ? ORDER BY idx",
+            "SELECT idx, params, ok, value, collision, min_ttc, min_distance, message, seconds, "
+            "metrics FROM trials WHERE search = ? ORDER BY idx",
             (key,),
         )
         return {
@@ -137,9 +156,10 @@ class SearchStore:
                     min_distance=min_distance,
                     message=message,
                     seconds=seconds,
+                    metrics=None if metrics is None else json.loads(metrics),
                 ),
             )
-            for idx, params, ok, value, collision, min_ttc, min_distance, message, seconds in rows
+            for idx, params, ok, value, collision, min_ttc, min_distance, message, seconds, metrics in rows
         }
 
     def close(self) -> None:
