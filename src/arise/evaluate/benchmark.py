@@ -149,6 +149,8 @@ class ReportRequest:
     recheck: bool = False
     map_dir: str | None = None
     search_trials: int = 0
+    #: The agent that drives the ego in those searches (as `arise drive --agent`).
+    search_agent: str | None = None
 
     @property
     def folder(self) -> Path:
@@ -171,7 +173,12 @@ def bench_report(request: ReportRequest, on_event: OnReportEvent | None = None) 
             from arise.evaluate.search.bench import search_runs
 
             trials = request.search_trials
-            count = search_runs(store, trials, on_record=lambda r: emit(RunSearched(r, trials)))
+            count = search_runs(
+                store,
+                trials,
+                agent=request.search_agent,
+                on_record=lambda r: emit(RunSearched(r, trials)),
+            )
             emit(SearchedAll(count))
         records, meta = store.runs(), store.meta()
     if not records:

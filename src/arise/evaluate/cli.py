@@ -33,6 +33,7 @@ from arise.evaluate.benchmark import (
 )
 from arise.evaluate.prompt_file import read_prompts
 from arise.evaluate.runner import BenchConfig
+from arise.evaluate.search.errors import SearchError
 from arise.executors import parse_executor
 from arise.generate.options import GenerateOptions, Mode, ModelExtraction
 from arise.llm.cli_options import ModelOption, ProviderOption, ReplayOption
@@ -321,7 +322,19 @@ def report_command(
             min=0,
         ),
     ] = 0,
+    agent: Annotated[
+        str | None,
+        typer.Option(
+            help="With --search-trials: the agent that drives the ego in every trial (idm, "
+            "cautious, blind, FILE.py:ClassName, as `arise drive --agent`); each run's "
+            "criticality then says whether the search made that agent fail."
+        ),
+    ] = None,
 ) -> None:
+    if agent is not None and not search_trials:
+        raise SearchError("--agent goes with --search-trials (the searches drive with it)")
+    if agent is not None:
+        resolve_agent(agent)  # a bad name: one line, before any re-check or search
     request = ReportRequest(
         database=database,
         out=out,
@@ -329,6 +342,7 @@ def report_command(
         recheck=recheck_runs,
         map_dir=map_dir,
         search_trials=search_trials,
+        search_agent=agent,
     )
     for path in bench_report(request, _print_report_event):
         console.print(terminal.text(terminal.name(path)))

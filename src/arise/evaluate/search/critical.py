@@ -3,8 +3,10 @@ and the report gives the critical instance next to the sampled one.
 
 The generate command lives in a lower layer than the search, so the chaining is a wrapper
 around that command, made here and registered by the command line: it adds the
-`--critical` and `--critical-trials` options, runs the generate command unchanged, then
-searches every run folder it left whose script ran.
+`--critical`, `--critical-trials` and `--agent` options, runs the generate command
+unchanged, then searches every run folder it left whose script ran. With `--agent`, the
+agent drives the ego in every trial, so the critical instance is where that agent fails,
+and its replay (run again with the agent) shows it failing.
 """
 
 from __future__ import annotations
@@ -23,12 +25,19 @@ from arise.evaluate.criticality import criticality
 from arise.evaluate.search.errors import SearchError
 from arise.evaluate.search.objective import Objective, score
 from arise.evaluate.search.outputs import describe, write_outputs
-from arise.evaluate.search.runner import SEARCH_SPAWN_ATTEMPTS, SearchConfig, run_search
+from arise.evaluate.search.runner import (
+    SEARCH_SPAWN_ATTEMPTS,
+    SearchConfig,
+    run_search,
+    search_agent,
+    search_folder_name,
+)
 from arise.evaluate.search.sampler import SamplerKind
 from arise.evaluate.search.store import SearchStore
 from arise.present.files import write_text_atomic
 from arise.present.tracefile import read_trace
-from arise.validate import CheckOptions
+from arise.validate import CheckOptions, check
+from arise.validate.types import SimulationFacts
 
 console = terminal.console()
 
@@ -37,7 +46,8 @@ def executed_runs(out: Path) -> list[Path]:
     """Run folders under `out` (itself included) whose final script ran."""
     found = []
     for report in sorted([out / "report.json", *out.rglob("*/report.json")]):
-        if not report.is_file() or report.parent.name in ("critical", "search"):
+        name = report.parent.name
+        if not report.is_file() or name in ("critical", "search") or name.startswith("search-"):
             continue
         try:
             status = json.loads(report.read_text(encoding="utf-8")).get("status")
@@ -48,11 +58,8 @@ def executed_runs(out: Path) -> list[Path]:
     return list(dict.fromkeys(found))
 
 
-def _sampled(folder: Path) -> dict[str, Any] | None:
-    """The criticality of the scene the run itself ran (its saved trace)."""
-    text = (folder / "scenario.scenic").read_text(encoding="utf-8")
-    saved = read_trace(folder, text)
-    facts = criticality(saved.simulation if saved else None)
+def _facts(simulation: SimulationFacts | None) -> dict[str, Any] | None:
+    facts = criticality(simulation)
     if facts is None or facts.min_distance is None:
         return None
     return {
@@ -63,33 +70,51 @@ def _sampled(folder: Path) -> dict[str, Any] | None:
     }
 
 
-def search_run(folder: Path, trials: int, seed: int, map_dir: str | None) -> dict[str, Any]:
-    """Search one run folder with VerifAI's cross-entropy sampler; record the critical
-    instance next to the sampled one in its report.json."""
+def _sampled(folder: Path, check_options: CheckOptions) -> dict[str, Any] | None:
+    """The criticality of the scene the run itself ran: its saved trace, or with an agent
+    the same script and seed driven by the agent (the run's own ego was scripted)."""
+    script = folder / "scenario.scenic"
+    if check_options.agent is None:
+        saved = read_trace(folder, script.read_text(encoding="utf-8"))
+        return _facts(saved.simulation if saved else None)
+    result = check(script, check_options)
+    return _facts(result.simulation if result.ok else None)
+
+
+def search_run(
+    folder: Path, trials: int, seed: int, map_dir: str | None, agent: str | None = None
+) -> dict[str, Any]:
+    """Search one run folder with VerifAI's cross-entropy sampler, with `agent` (checked by
+    `search_agent`) in the ego's seat if given; record the critical instance next to the
+    sampled one in its report.json."""
     config = SearchConfig(
         script=folder / "scenario.scenic",
         objective=Objective.MIN_TTC,
         sampler=SamplerKind.CE,
         trials=trials,
         seed=seed,
-        check=CheckOptions(map_dir=map_dir, spawn_attempts=SEARCH_SPAWN_ATTEMPTS),
+        check=CheckOptions(map_dir=map_dir, spawn_attempts=SEARCH_SPAWN_ATTEMPTS, agent=agent),
     )
-    out = folder / "search"
+    out = folder / search_folder_name(agent)
     with SearchStore(out / "search.sqlite") as store:
         result = run_search(config, store)
     files = write_outputs([result], out)
     best = result.best
+    replay = next((p for p in files.replay if p.suffix == ".gif"), None)
     entry: dict[str, Any] = {
         "objective": config.objective.value,
         "sampler": config.sampler.value,
+        "agent": config.agent_label,
         "trials": len(result.trials),
         "seed": seed,
-        "sampled": _sampled(folder),
+        "sampled": _sampled(folder, config.check.model_copy(update={"seed": seed})),
         "critical": None
         if best is None
         else {"trial": best.index + 1, "values": best.values, **best.outcome.as_dict()},
         "first_critical_trial": result.first_critical,
         "script": str(files.critical_script) if files.critical_script else None,
+        "replay": str(replay) if replay else None,
+        "critical_metrics": files.critical_metrics,
         "notes": files.notes,
     }
     report_path = folder / "report.json"
@@ -97,8 +122,13 @@ def search_run(folder: Path, trials: int, seed: int, map_dir: str | None) -> dic
     report["critical_search"] = entry
     write_text_atomic(report_path, json.dumps(report, indent=2, default=str) + "\n")
     if best is not None:
-        console.print(terminal.text("  critical instance: ", describe(best, config.objective)))
+        driver = "" if config.agent is None else f" for the agent {config.agent_label}"
+        console.print(
+            terminal.text(f"  critical instance{driver}: ", describe(best, config.objective))
+        )
         console.print(terminal.text("    ", terminal.name(files.critical_script)))
+        if replay is not None:
+            console.print(terminal.text("    replay: ", terminal.name(replay)))
     sampled = entry["sampled"]
     if sampled is not None:
         console.print(
@@ -112,7 +142,7 @@ def search_run(folder: Path, trials: int, seed: int, map_dir: str | None) -> dic
 
 
 def with_critical_search(command: Callable[..., None]) -> Callable[..., None]:
-    """The generate command with `--critical [--critical-trials N]` added."""
+    """The generate command with `--critical [--critical-trials N] [--agent NAME]` added."""
     signature = inspect.signature(command, eval_str=True)
     extra = [
         inspect.Parameter(
@@ -133,27 +163,45 @@ def with_critical_search(command: Callable[..., None]) -> Callable[..., None]:
             default=30,
             annotation=Annotated[int, typer.Option(help="Trials of the --critical search.")],
         ),
+        inspect.Parameter(
+            "agent",
+            inspect.Parameter.KEYWORD_ONLY,
+            default=None,
+            annotation=Annotated[
+                str | None,
+                typer.Option(
+                    help="With --critical: the agent that drives the ego in every trial "
+                    "(idm, cautious, blind, FILE.py:ClassName, as `arise drive --agent`); "
+                    "the search looks for where it fails."
+                ),
+            ],
+        ),
     ]
 
     @functools.wraps(command)
     def generate_then_search(
-        *args: Any, critical: bool, critical_trials: int, **kwargs: Any
+        *args: Any, critical: bool, critical_trials: int, agent: str | None, **kwargs: Any
     ) -> None:
+        if agent is not None and not critical:
+            raise SearchError("--agent goes with --critical (the search drives with it)")
+        driver = search_agent(agent)  # a bad name: one line, before any generation
+        if critical and critical_trials < 1:
+            raise SearchError("--critical-trials must be at least 1")
         code = 0
         try:
             command(*args, **kwargs)
         except typer.Exit as done:
             code = done.exit_code
         if critical and code in (0, 1):
-            if critical_trials < 1:
-                raise SearchError("--critical-trials must be at least 1")
             for folder in executed_runs(Path(kwargs["out"])):
                 console.print(
                     terminal.text(
                         "searching ", terminal.name(folder), f" ({critical_trials} trials)"
                     )
                 )
-                search_run(folder, critical_trials, int(kwargs["seed"]), kwargs.get("map_dir"))
+                search_run(
+                    folder, critical_trials, int(kwargs["seed"]), kwargs.get("map_dir"), driver
+                )
         raise typer.Exit(code)
 
     parameters = [*signature.parameters.values(), *extra]

@@ -18,6 +18,7 @@ from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from typing import Any
 
+from arise.drive.metrics_types import DrivingMetrics
 from arise.evaluate.search.errors import SearchError
 
 #: The trace facts of the ego against the adversary (`arise.evaluate.criticality`).
@@ -27,11 +28,10 @@ FACTS: dict[str, str] = {
     "collision": "1 when ego and adversary touched, else 0",
 }
 
-#: The driving metrics of the run, as `arise drive` names them (`arise.drive.measure`;
-#: docs/agents.md#metrics). `route_completion` is SafeBench's, along the ego's route. A
-#: metric with no value for a run (`min_ttc_s`, `pet_s`: never on course to touch, paths
-#: never cross) reads `NEUTRAL_TIME`, as far from a conflict as `min_ttc` gets.
-DRIVE_METRICS: dict[str, str] = {
+#: What the driving metrics mean (`arise drive`'s columns, docs/agents.md#metrics); the
+#: names an expression may use are the metrics' own fields, so a new metric is usable at
+#: once (with "a driving metric" as its description until it is added here).
+_METRIC_HELP: dict[str, str] = {
     "collision_count": "contacts of the ego with any other agent",
     "red_lights_run": "red lights the ego ran (RR)",
     "stop_signs_run": "stop signs the ego ran (SS)",
@@ -48,10 +48,29 @@ DRIVE_METRICS: dict[str, str] = {
     "pet_s": "post-encroachment time with the adversary, s (10 when none)",
     "road_checked": "1 when a road network was at hand, else 0",
 }
-#: What a drive metric without a value reads (s): no conflict, like `min_ttc`'s cap.
+
+#: The driving metrics of the run by `arise drive`'s names (`arise.drive.measure`), every
+#: field of `DrivingMetrics` but the trace facts' own `collision` (the ego against the
+#: adversary here, as the built-in objectives read it; `collision_count` counts contacts
+#: with anyone). `route_completion` is SafeBench's, along the ego's route.
+DRIVE_METRICS: dict[str, str] = {
+    name: _METRIC_HELP.get(name, "a driving metric (docs/agents.md#metrics)")
+    for name in DrivingMetrics.model_fields
+    if name != "collision"
+}
+#: What a metric without a value reads: a time (`_s`: never on course to touch, paths that
+#: never cross) NEUTRAL_TIME, as far from a conflict as `min_ttc` gets; a distance (`_m`)
+#: NEUTRAL_DISTANCE; anything else 0.
 NEUTRAL_TIME = 10.0
-#: The value of each metric that may have none, when it has none (every other: 0).
-NO_VALUE: dict[str, float] = {"min_ttc_s": NEUTRAL_TIME, "pet_s": NEUTRAL_TIME}
+NEUTRAL_DISTANCE = 50.0
+
+
+def no_value(name: str) -> float:
+    """What a driving metric reads when the run gives it none."""
+    if name.endswith("_s"):
+        return NEUTRAL_TIME
+    return NEUTRAL_DISTANCE if name.endswith("_m") else 0.0
+
 
 #: Every name an expression may use, and what each means (shown in the help and errors).
 NAMES: dict[str, str] = {**FACTS, **DRIVE_METRICS}

@@ -20,8 +20,8 @@ from arise.evaluate.criticality import criticality
 from arise.evaluate.search.errors import SearchError
 from arise.evaluate.search.expression import (
     DRIVE_METRICS,
-    NO_VALUE,
     Expression,
+    no_value,
 )
 from arise.validate.types import CheckResult
 
@@ -130,11 +130,10 @@ def score(
 
 
 def drive_values(metrics: MetricRow | None) -> dict[str, float]:
-    """Every driving metric as an expression reads it: a time with no value (never on
-    course to touch, paths that never cross) is NEUTRAL_TIME, any other gap 0."""
+    """Every driving metric as an expression reads it (`no_value` for one without)."""
     row = metrics or {}
     return {
-        name: float(value) if (value := row.get(name)) is not None else NO_VALUE.get(name, 0.0)
+        name: float(value) if (value := row.get(name)) is not None else no_value(name)
         for name in DRIVE_METRICS
     }
 

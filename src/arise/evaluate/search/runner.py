@@ -19,6 +19,7 @@ from pathlib import Path
 from arise.agents import AgentError
 from arise.agents.types import BuiltinAgent
 from arise.drive.agent_names import agent_label, resolve_agent
+from arise.drive.sources import safe_part
 from arise.evaluate.search.errors import NoFreeParameters, SearchError, StoreMismatch
 from arise.evaluate.search.executor import Executor, TrialJob, TrialRunner, make_runner
 from arise.evaluate.search.expression import Expression
@@ -136,6 +137,14 @@ def search_agent(name: str | None) -> str | None:
         return None
     text = resolve_agent(name)
     return None if text == BuiltinAgent.SCRIPTED.value else text
+
+
+def search_folder_name(agent: str | None) -> str:
+    """The folder a run's search goes to: `search`, or `search-AGENT` for an agent, so the
+    searches of several agents keep their own critical instance and files."""
+    if agent is None:
+        return "search"
+    return "search-" + safe_part(agent_label(agent).replace(":", "-"), "agent")
 
 
 def resolve_script(target: Path) -> Path:

@@ -23,6 +23,7 @@ from arise.evaluate.search.runner import (
     resolve_script,
     run_search,
     search_agent,
+    search_folder_name,
 )
 from arise.evaluate.search.sampler import SamplerKind
 from arise.evaluate.search.store import SearchStore, TrialRecord
@@ -84,8 +85,14 @@ class SearchSession:
     files: SearchFiles
 
 
-def output_folder(target: Path, script: Path, out: Path | None) -> Path:
-    return out or (target / "search" if target.is_dir() else Path("out") / f"search-{script.stem}")
+def output_folder(target: Path, script: Path, out: Path | None, agent: str | None = None) -> Path:
+    """OUT, else RUN_DIR/search (search-AGENT with an agent), else out/search-NAME(-AGENT)."""
+    if out is not None:
+        return out
+    name = search_folder_name(agent)
+    if target.is_dir():
+        return target / name
+    return Path("out") / (f"search-{script.stem}" + name.removeprefix("search"))
 
 
 def search(request: SearchRequest, on_event: OnSearchEvent | None = None) -> SearchSession:
@@ -101,7 +108,7 @@ def search(request: SearchRequest, on_event: OnSearchEvent | None = None) -> Sea
     goal = parse_expression(request.expression or "") if custom else None
     if not request.samplers:
         raise SearchError("--sampler needs at least one sampler")
-    folder = output_folder(request.target, script, request.out)
+    folder = output_folder(request.target, script, request.out, check.agent)
     results: list[SearchResult] = []
     with SearchStore(folder / "search.sqlite") as store:
         for kind in request.samplers:
