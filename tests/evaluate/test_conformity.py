@@ -123,3 +123,26 @@ def test_semantic_gate_fails_a_running_script_that_says_something_else(
     assert failed.diagnostic.stage is Stage.SEMANTIC
     assert failed.diagnostic.section == "SPAWN"
     assert "adversary_type" in failed.diagnostic.message and "weather" in failed.diagnostic.message
+
+
+@pytest.mark.slow
+def test_every_run_reports_its_conflict_and_the_gate_holds_a_stated_contact(
+    example_run: CheckResult,
+) -> None:
+    conformity = check_conformity(_spec(), example_run.simulation)
+    conflict = conformity.as_dict()["conflict"]
+    assert conflict is not None and conflict["asked"] == "reach"
+    pair = next(
+        c for c in conformity.checks if c.name == "conflict"
+    )  # the crossing pedestrian meets the ego
+    assert pair.ok is True and conflict["met"] is True
+    assert conflict["closest_m"] is not None and conflict["closest_m"] < 6
+    # Told that the two touched, the same run must show contact or a TTC under 1.5 s.
+    touched = check_conformity(_spec(contact_stated=True), example_run.simulation)
+    close = next(c for c in touched.checks if c.name == "conflict")
+    assert close.expected == "contact or TTC under 1.5 s"
+    assert close.ok is (conflict["contact"] or (conflict["min_ttc_s"] or 99) < 1.5)
+    # A parked adversary is asked for no conflict at all.
+    parked = check_conformity(_spec(adversary_stationary=True), example_run.simulation)
+    assert "conflict" not in {c.name for c in parked.checks}
+    assert parked.conflict is not None and parked.conflict["asked"] == "none"

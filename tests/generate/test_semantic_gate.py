@@ -447,3 +447,26 @@ def test_a_foggy_spec_needs_the_fog_that_ran_not_only_its_preset() -> None:
     dusk = weather_for("ClearNoon", Visibility.FOG, Light.DUSK)
     assert gate(dusk.param_text()) == {"weather"}
     assert "weather" not in gate("{not json"), "unreadable text is unknown, not contradicted"
+
+
+LATE = Contradiction(
+    "conflict", "within 6 m or TTC under 3 s", "closest 14.2 m, never closing", "BEHAVIOR"
+)
+
+
+def test_a_conflict_that_never_happens_is_repaired_by_another_behavior_never_by_the_model() -> None:
+    model = ScriptedProvider()  # never asked: no model fix moves a trigger it cannot see run
+    run, draft, context = setup(spawn(1), provider=model)
+    timed = entry(
+        "behavior.timed",
+        "behavior AdversaryBehavior():\n    wait",
+        defines=["AdversaryBehavior"],
+    )
+    context.retrieval.candidates[Component.BEHAVIOR].append(timed)
+    validate = gated([passed(), passed()], [[LATE], [LATE]])
+    outcome = repair_loop(run, draft.script, validate, context, max_repairs=5)
+    assert kinds(run) == [AttemptKind.INITIAL, AttemptKind.SWAP]
+    assert run.attempts[1].detail == "behavior.cross -> behavior.timed"
+    assert model.requests == [], "no candidate left: the gate stops instead of asking"
+    assert outcome.status is RunStatus.EXECUTED
+    assert (outcome.message or "").startswith("no repair left for: ")

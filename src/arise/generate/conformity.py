@@ -16,6 +16,7 @@ import math
 from dataclasses import dataclass, field
 from typing import Any
 
+from arise.generate.conflict import ConflictLevel, conflict_facts, conflict_level
 from arise.generate.spec import Actor, ScenarioSpec
 from arise.validate.types import (
     AgentTrace,
@@ -45,6 +46,7 @@ GATED_CHECKS = {
     "ego_stopped": "GEOMETRY",
     "road_type": "GEOMETRY",
     "reaches_ego_path": "BEHAVIOR",
+    "conflict": "BEHAVIOR",
     "participants": "MISC",
     "extra_actors": "MISC",
     "weather": "WEATHER",
@@ -73,6 +75,8 @@ class ConformityCheck:
 @dataclass
 class Conformity:
     checks: list[ConformityCheck] = field(default_factory=list)
+    # The adversary against the ego (`ConflictFacts.as_dict`), when the run has both.
+    conflict: dict[str, Any] | None = None
 
     @property
     def known(self) -> list[ConformityCheck]:
@@ -97,6 +101,7 @@ class Conformity:
             "score": self.score,
             "mismatches": self.mismatches,
             "checks": [c.as_dict() for c in self.checks],
+            "conflict": self.conflict,
         }
 
 
@@ -328,6 +333,15 @@ def check_conformity(
                 gated=spec.spawn_position not in ROADSIDE,
             )
         )
+        level = conflict_level(spec)
+        conflict = conflict_facts(ego, adversary)
+        result.conflict = conflict.as_dict(level)
+        if level is not ConflictLevel.NONE:
+            add(
+                ConformityCheck(
+                    "conflict", level.wanted, conflict.describe(), conflict.meets(level)
+                )
+            )
     add(_weather_check(spec, facts.params.get("weather")))
     others = [a for a in facts.agents if not a.is_ego and a is not adversary]
     fewest, most = actor_counts(spec.actors)

@@ -38,6 +38,9 @@ from arise.validate.types import CheckResult, Diagnostic, Stage
 SECTION_COMPONENT = {c.section: c for c in Component}
 _UNNAMED = re.compile(r"\bunnamed (\w+)")
 _CODE_BLOCK = re.compile(r"```(?:scenic|python)?\s*\n(.*?)```", re.S)
+#: Contradictions a model fix cannot be told how to remove: a conflict that came too late or
+#: too far is the timing of the behavior's entry, which only another entry changes.
+SWAP_ONLY_CHECKS = frozenset({"conflict"})
 #: A section's model repairs that may fail before only swaps are tried for it.
 MODEL_TRIES_PER_SECTION = 2
 
@@ -309,7 +312,9 @@ def semantic_repair(
             return step
     usage = Usage()
     for section in sections:
-        own = [c for c in found if c.section == section]
+        own = [c for c in found if c.section == section and c.check not in SWAP_ONLY_CHECKS]
+        if found and not own:
+            continue
         keys = {(section, c.check, c.expected) for c in own}
         if keys and keys <= context.model_asked:
             continue  # a model fix of this section already failed to remove these

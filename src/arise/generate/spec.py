@@ -163,6 +163,12 @@ class ScenarioSpec(BaseModel):
         default=False,
         description="the text says the ego stands still (at a red light, in traffic)",
     )
+    contact_stated: bool = Field(
+        default=False,
+        description="the text says the adversary and the ego touched or nearly did "
+        "('struck', 'made contact', 'a near miss'): the run must show contact or a "
+        "time-to-collision under 1.5 s",
+    )
     participants: list[str] = Field(
         default_factory=list, description="other road users and objects, one per item"
     )
