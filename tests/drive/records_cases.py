@@ -36,6 +36,7 @@ def driven(
         "lane_invasions": 0,
         "overall_score": 0.9,
         "min_ttc_s": None,
+        "conflict_reached": 1,
     }
     values.update(metrics)
     return DriveRecord(

@@ -297,6 +297,24 @@ def test_pet_is_measured_against_the_adversary_only() -> None:
     assert measure(ego, unmarked, bystander).pet_s == pytest.approx(0.4)
 
 
+def test_the_conflict_is_read_against_the_adversary() -> None:
+    # Crossing just before the ego: the two never touch, but they come within reach.
+    near = measure(*crossing(-5.03))
+    assert near.adversary_gap_m is not None and 0 < near.adversary_gap_m < 6
+    assert near.conflict_reached == 1
+    hit = measure(*crossing(-8.03))
+    assert hit.adversary_gap_m == 0 and hit.adversary_ttc_s == 0 and hit.conflict_reached == 1
+    # 20 m to the side, walking the same way: out of reach, never closing.
+    far = measure(
+        car("ego", line((0, 0), (10, 0), 100, EAST), ego=True),
+        pedestrian("walker", line((20, 20), (1.5, 0), 100, EAST)),
+    )
+    assert far.adversary_gap_m is not None and far.adversary_gap_m > 18
+    assert far.adversary_ttc_s is None and far.conflict_reached == 0
+    alone = measure(car("ego", line((0, 0), (10, 0), 100, EAST), ego=True))
+    assert alone.conflict_reached is None and alone.adversary_gap_m is None
+
+
 def test_a_walker_on_the_sidewalk_never_crosses_the_ego_s_path() -> None:
     got = measure(
         car("ego", line((0, 0), (10, 0), 100, EAST), ego=True),
@@ -506,6 +524,9 @@ def test_the_metrics_are_finite_and_named_as_the_columns() -> None:
         "overall_score",
         "min_ttc_s",
         "pet_s",
+        "adversary_gap_m",
+        "adversary_ttc_s",
+        "conflict_reached",
         "road_checked",
     ]
     assert all(math.isfinite(v) for v in got.model_dump().values() if isinstance(v, float))

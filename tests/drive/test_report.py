@@ -37,6 +37,7 @@ def test_the_table_averages_each_category_and_overall() -> None:
     assert rt.values["lane_invasions"] == 3 and rt.values["route_completion"] == 0.5
     assert so.values["min_ttc_s"] == 1.0  # the median of 0 and 2
     assert rt.values["min_ttc_s"] is None  # no run of it came near anything
+    assert so.values["conflict_reached"] == 1.0
     assert overall.values["overall_score"] is not None
 
 

@@ -18,7 +18,7 @@ import math
 import numpy as np
 from pydantic import ValidationError
 
-from arise.drive.metrics_encounters import contacts, min_ttc, post_encroachment
+from arise.drive.metrics_encounters import contacts, min_gap, min_ttc, post_encroachment
 from arise.drive.metrics_road import (
     LaneRef,
     RoadQueries,
@@ -46,6 +46,10 @@ __all__ = [
     "compute_metrics",
     "overall_score",
 ]
+
+#: The adversary is within reach of the ego: boxes this close (m), or a TTC under this (s).
+REACH_GAP_M = 6.0
+REACH_TTC_S = 3.0
 
 #: The behavior our scripts give their adversary (arise.kb.actors.ADVERSARY_BEHAVIOR).
 ADVERSARY_BEHAVIOR = "AdversaryBehavior"
@@ -101,6 +105,13 @@ def compute_metrics(
         xs, ys = ego.x.tolist(), ego.y.tolist()
         out_of_road = out_of_road_length(road, xs, ys)
         lane_crossings = lane_invasions(road, xs, ys, dt)
+    opponents = [o for o in near if o.name in named]
+    gap, ttc = min_gap(ego, opponents), min_ttc(ego, opponents)
+    reached = None
+    if opponents:
+        reached = int(
+            (gap is not None and gap < REACH_GAP_M) or (ttc is not None and ttc < REACH_TTC_S)
+        )
     try:
         return DrivingMetrics(
             collision=int(met.count > 0),
@@ -127,7 +138,10 @@ def compute_metrics(
                 4,
             ),
             min_ttc_s=_rounded(min_ttc(ego, near)),
-            pet_s=_rounded(post_encroachment(ego, [o for o in near if o.name in named], dt)),
+            pet_s=_rounded(post_encroachment(ego, opponents, dt)),
+            adversary_gap_m=_rounded(gap),
+            adversary_ttc_s=_rounded(ttc),
+            conflict_reached=reached,
             road_checked=road is not None,
         )
     except ValidationError as error:

@@ -65,6 +65,19 @@ def min_ttc(ego: Track, others: Iterable[Track]) -> float | None:
     return None if math.isinf(best) else best
 
 
+def min_gap(ego: Track, others: Iterable[Track]) -> float | None:
+    """The smallest distance between the ego's box and any of `others`' boxes at the same
+    step, metres (0: contact; None: no common step)."""
+    best = math.inf
+    for other in others:
+        ia, ib = common_steps(ego, other)
+        if len(ia):
+            mine = shapely.polygons(ego.corners()[ia])
+            theirs = shapely.polygons(other.corners()[ib])
+            best = min(best, float(np.min(shapely.distance(mine, theirs))))
+    return None if math.isinf(best) else best
+
+
 def post_encroachment(ego: Track, others: Iterable[Track], timestep: float) -> float | None:
     """The smallest post-encroachment time with any of `others`, seconds (None: their
     paths never cross)."""

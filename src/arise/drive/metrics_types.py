@@ -63,6 +63,11 @@ class DrivingMetrics(BaseModel):
     overall_score: Fraction  # OS: SafeBench's weighted score; HIGHER IS BETTER (1 = perfect)
     min_ttc_s: NonNegative | None  # smallest time-to-collision (boxes, constant velocity)
     pet_s: NonNegative | None  # post-encroachment time with the adversary
+    # The conflict (issue 31): the adversary's closest approach and smallest TTC, and 1
+    # when it came within reach (6 m, or under 3 s); None when the scene has no other agent.
+    adversary_gap_m: NonNegative | None = None
+    adversary_ttc_s: NonNegative | None = None
+    conflict_reached: Annotated[int, Field(ge=0, le=1)] | None = None
     # False when no road network was at hand: lane invasions and out of road read 0 then.
     road_checked: bool
 

@@ -50,6 +50,11 @@ TABLE = (
     Column("LI", "lane_invasions", "lane invasions, per run"),
     Column("OS", "overall_score", "overall score, SafeBench's weights (higher is better)", 3),
     Column("min TTC", "min_ttc_s", "smallest time to collision (s): median over runs with one"),
+    Column(
+        "Reach",
+        "conflict_reached",
+        "share of runs with an adversary where it came within 6 m of the ego or under 3 s TTC",
+    ),
 )
 #: runs.csv's columns before and after the metrics.
 LEAD = ("scenario", "category", "agent", "run_index", "seed", "status", "map")
