@@ -21,7 +21,7 @@ SAFE_LOADER: type[yaml.SafeLoader] = getattr(yaml, "CSafeLoader", yaml.SafeLoade
 @dataclass(frozen=True)
 class Lexicon:
     classes: dict[str, tuple[str, ...]]
-    #: A slot's word -> the word a value takes ("r" -> "right").
+    #: A slot's word -> the word a value takes ("r" -> "right"), keyed by `slot_key`.
     slot_words: dict[str, str]
     #: (Scenic class, phrases), most specific class first.
     nouns: tuple[tuple[str, tuple[str, ...]], ...]
@@ -54,13 +54,27 @@ def lexicon() -> Lexicon:
         raise RuleError("lexicon: slot_words must map words to words")
     return Lexicon(
         classes=classes,
-        slot_words={k.lower(): v.lower() for k, v in slot_words.items()},
+        slot_words={slot_key(k): v.lower() for k, v in slot_words.items()},
         nouns=nouns,
         not_an_actor_before=_strings(data["not_an_actor_before"], "not_an_actor_before"),
         makes=_strings(data["makes"], "makes"),
         colours=_strings(data["colours"], "colours"),
         noun_pattern=_noun_pattern(nouns),
     )
+
+
+_SLOT_GAP = re.compile(r"[\s()>,'-]+")
+
+
+def slot_key(word: str) -> str:
+    """A slot's word as `slot_words` knows it, however the text spaces or hyphenates it:
+    "Near-side", "near side" and "nearside" are one key, as are "2 o'clock" and "2 oclock"."""
+    return _SLOT_GAP.sub("", word.lower())
+
+
+def slot_word(word: str) -> str:
+    """The word a rule's value takes for a slot's matched `word` ("R" -> "right")."""
+    return lexicon().slot_words.get(slot_key(word), word.lower())
 
 
 def _noun_pattern(nouns: tuple[tuple[str, tuple[str, ...]], ...]) -> re.Pattern[str]:

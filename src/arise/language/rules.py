@@ -33,7 +33,7 @@ import yaml
 from pydantic import BaseModel, ConfigDict, Field, ValidationError
 
 from arise.language.errors import RuleError
-from arise.language.lexicon import SAFE_LOADER, lexicon
+from arise.language.lexicon import SAFE_LOADER, lexicon, slot_word
 from arise.language.patterns import compile_pattern
 from arise.vocabulary import EgoPlan, RelativePosition, RequirementKind, RoadType, StartDetail
 
@@ -131,16 +131,13 @@ class CompiledRule:
         """Matches that lie inside text[start:end] and inside no `unless` match."""
         stop = len(text) if end is None else end
         vetoes = [m.span() for p in self.unless for m in p.finditer(text)]
-        words = lexicon().slot_words
         for pattern in self.when:
             for match in pattern.finditer(text, start):
                 if match.end() > stop:
                     break
                 if any(a <= match.start() and match.end() <= b for a, b in vetoes):
                     continue
-                slots = {
-                    k: words.get(v.lower(), v.lower()) for k, v in match.groupdict().items() if v
-                }
+                slots = {k: slot_word(v) for k, v in match.groupdict().items() if v}
                 yield Hit(
                     rule=self.rule,
                     value=self.rule.value.format(**slots) if slots else self.rule.value,
@@ -264,10 +261,9 @@ def _check_value(rule: Rule, where: str) -> None:
     if any(slot not in classes for slot in slots):
         raise RuleError(f"{where}: rule {rule.id}: its value names no lexicon class")
     values = {rule.value}
-    words = lexicon().slot_words
     for slot in slots:
         values = {
-            value.replace(f"{{{slot}}}", words.get(word, word))
+            value.replace(f"{{{slot}}}", slot_word(word))
             for value in values
             for word in classes[slot]
         }
