@@ -265,6 +265,13 @@ class EgoPlan(StrEnum):
     PULL_OVER = "ego_pulls_over"  # pulls over to the kerb and stops
 
 
+class Timing(StrEnum):
+    """When the adversary makes its move, seen from the ego, when the description says."""
+
+    LATE = "late"  # at the last moment: "just as the ego passes", "without warning"
+    EARLY = "early"  # with time to spare: "well ahead", "in the distance"
+
+
 # A constraint the description states in words (a requirement the semantic gate checks).
 # No docstring: it would change the extraction schema the model is given.
 class RequirementKind(StrEnum):

@@ -51,7 +51,8 @@ def declared_params(entries: list[Entry]) -> dict[str, tuple[str, str]]:
     return found
 
 
-def _bounds(value: str) -> tuple[float, float] | None:
+def range_bounds(value: str) -> tuple[float, float] | None:
+    """(low, high) of a parameter's value text: a number or `Range(a, b)`."""
     match = _VALUE.match(value)
     if not match:
         return None
@@ -67,7 +68,7 @@ def checked_value(proposed: Any, default: str) -> str | None:
     text = str(proposed).strip()
     if isinstance(proposed, (int, float)) and not isinstance(proposed, bool):
         text = f"{proposed:g}"
-    wanted, usual = _bounds(text), _bounds(default)
+    wanted, usual = range_bounds(text), range_bounds(default)
     if wanted is None or usual is None:
         return None
     low, high = usual

@@ -32,6 +32,7 @@ from arise.generate.retrieve import EGO_STOPPED_TAG, Retrieval, retrieve
 from arise.generate.rules import RuleContext
 from arise.generate.run import Attempt, AttemptKind, Generation, Outcome, RunStatus
 from arise.generate.spec import ScenarioSpec
+from arise.generate.timing import timed_params
 from arise.kb.compose import ComposeError
 from arise.kb.loader import KnowledgeBase
 from arise.kb.retrieval.base import Retriever
@@ -349,6 +350,14 @@ class Generator:
                     seed=options.seed,
                 )
                 run.retrieval.notes += notes
+            own = [e for e in run.retrieval.chosen_entries() if e.actor is None]
+            timed = timed_params(spec.timing, own)
+            if timed:
+                run.retrieval.notes.append(
+                    f"timing: the text says the adversary moves {spec.timing}: "
+                    + ", ".join(f"{name} = {value}" for name, value in timed.items())
+                )
+            params = {**timed, **params}  # stated numbers, which the model read, win
             draft = assemble(run.retrieval, adversary, run.description, params)
         except ComposeError as error:
             run.add_attempt(compose_failure(error))
@@ -363,6 +372,7 @@ class Generator:
                 draft=draft,
                 provider=self.provider,
                 maps=self.maps,
+                timing=spec.timing,
                 temperature=options.temperature,
                 seed=options.seed,
                 rules=RuleContext(

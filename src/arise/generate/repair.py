@@ -21,6 +21,7 @@ from arise.generate.events import AttemptChecked, Progress, RunStage, StageStart
 from arise.generate.retrieve import Retrieval
 from arise.generate.rules import RuleContext, apply_rules
 from arise.generate.run import Attempt, AttemptKind, Generation, Outcome, RunStatus, unified_diff
+from arise.generate.timing import timed_params
 from arise.kb.compose import (
     ComposeError,
     actor_at_line,
@@ -34,6 +35,7 @@ from arise.llm.types import Message, Usage
 from arise.prompts import load
 from arise.sections import replace_section, section_body
 from arise.validate.types import CheckResult, Diagnostic, Stage
+from arise.vocabulary import Timing
 
 SECTION_COMPONENT = {c.section: c for c in Component}
 _UNNAMED = re.compile(r"\bunnamed (\w+)")
@@ -133,6 +135,7 @@ class RepairContext:
     # asking again gives the same answer, so the gate stops instead.
     model_asked: set[tuple[str, str, str]] = field(default_factory=set)
     maps: dict[str, frozenset[str]] = field(default_factory=dict)  # map name -> features
+    timing: Timing | None = None  # when the text says the adversary moves (`generate.timing`)
 
     def count_model_failure(self, section: str) -> None:
         self.llm_failures[section] = self.llm_failures.get(section, 0) + 1
@@ -273,12 +276,14 @@ def _recomposed(context: RepairContext, entries: list[Entry], note: str) -> Repa
         script = compose(entries, draft.adversary_class, map_name, description=context.description)
     except ComposeError:
         return None
+    # A swapped-in entry's triggers have ranges of their own: the timing words narrow those.
+    params = {**draft.params, **timed_params(context.timing, (e for e in entries if not e.actor))}
     new_draft = Draft(
-        script=apply_params(script, draft.params),
+        script=apply_params(script, params),
         entries=entries,
         map_name=map_name,
         adversary_class=draft.adversary_class,
-        params=draft.params,
+        params=params,
     )
     return RepairStep(new_draft.script, AttemptKind.SWAP, note, draft=new_draft)
 

@@ -26,6 +26,7 @@ from arise.vocabulary import (
     RoadType,
     Side,
     StartDetail,
+    Timing,
 )
 from arise.weather import Weather
 
@@ -162,6 +163,11 @@ class ScenarioSpec(BaseModel):
     ego_stopped: bool = Field(
         default=False,
         description="the text says the ego stands still (at a red light, in traffic)",
+    )
+    timing: Timing | None = Field(
+        default=None,
+        description="when the adversary moves, seen from the ego ('at the last moment' is "
+        "late), if the text says: its trigger is then taken from that end of its range",
     )
     contact_stated: bool = Field(
         default=False,
