@@ -164,8 +164,89 @@ def read_lane_number(cast: Cast, mention: Mention) -> GroundedFact | None:
     )
 
 
-def read_position(cast: Cast, mention: Mention) -> GroundedFact | None:
-    """Where `mention` starts, seen from the ego, from the words about it."""
+_LEFT = frozenset(
+    {
+        RelativePosition.ROADSIDE_LEFT,
+        RelativePosition.ADJACENT_LANE_LEFT,
+        RelativePosition.CROSSING_FROM_LEFT,
+    }
+)
+_RIGHT = frozenset(
+    {
+        RelativePosition.ROADSIDE_RIGHT,
+        RelativePosition.ADJACENT_LANE_RIGHT,
+        RelativePosition.CROSSING_FROM_RIGHT,
+    }
+)
+#: "out from in front of it": the pronoun is the actor named last before it.
+_PRONOUN = re.compile(r"\s*(?:it|them)\b", re.I)
+
+
+def _named_after(cast: Cast, mention: Mention, at: int) -> Mention | None:
+    """The other actor whose phrase starts right at `at` (spaces aside), or, for "it" or
+    "them" there, the last other actor named before it."""
+    text = cast.text
+    for other in cast.others:
+        if other is mention or other.cls.is_place:
+            continue
+        for span in other.spans:
+            lead = phrase_start(text, span.start)
+            if lead >= at and not text[at:lead].strip():
+                return other
+    if not _PRONOUN.match(text, at):
+        return None
+    before = [
+        (span.end, other)
+        for other in cast.others
+        if other is not mention and not other.cls.is_place
+        for span in other.spans
+        if span.end <= at
+    ]
+    return max(before, key=lambda item: item[0])[1] if before else None
+
+
+def _by_another(cast: Cast, mention: Mention) -> GroundedFact | None:
+    """A start said by another actor whose start the text gives: a walker that steps out
+    from behind (or in front of) a van parked on the left crosses from the left; a vehicle
+    coming up behind a car in the lane to the left is in that lane too, and one behind an
+    oncoming car is oncoming."""
+    text = cast.text
+    walker = mention.cls in (ActorClass.PEDESTRIAN, ActorClass.BICYCLE)
+    for start, end in words_of(cast, mention):
+        for hit in rulebook().hits(Fact.BY_ANOTHER, text, start, min(len(text), end + 1)):
+            other = _named_after(cast, mention, hit.end)
+            if other is None:
+                continue
+            told = read_compass(cast, other) or read_position(cast, other, by_another=False)
+            if told is None:
+                continue
+            theirs = RelativePosition(told.value)
+            position: RelativePosition | None = None
+            if hit.value == "emerges" and walker and theirs in _LEFT | _RIGHT:
+                position = (
+                    RelativePosition.CROSSING_FROM_LEFT
+                    if theirs in _LEFT
+                    else RelativePosition.CROSSING_FROM_RIGHT
+                )
+            elif (
+                hit.value == "behind"
+                and not walker
+                and (theirs in _ADJACENT or theirs is RelativePosition.ONCOMING)
+            ):
+                position = theirs
+            if position is not None:
+                return GroundedFact(
+                    name="spawn_position",
+                    value=position.value,
+                    source=FactSource.TEXT,
+                    quote=f"{hit.quote} ... {told.quote}",
+                )
+    return None
+
+
+def read_position(cast: Cast, mention: Mention, *, by_another: bool = True) -> GroundedFact | None:
+    """Where `mention` starts, seen from the ego, from the words about it; when they say
+    none, from the start of another actor they place it by (`_by_another`)."""
     told = (
         read_lane_number(cast, mention)
         or _ego_follows(cast, mention)
@@ -231,7 +312,7 @@ def read_position(cast: Cast, mention: Mention) -> GroundedFact | None:
             )
             best = (target.start, -1, position, f"{lane_side.quote} ... {target.quote}")
     if best is None:
-        return None
+        return _by_another(cast, mention) if by_another else None
     return GroundedFact(
         name="spawn_position", value=best[2].value, source=FactSource.TEXT, quote=best[3]
     )

@@ -80,6 +80,9 @@ class Fact(StrEnum):
     LANE_NUMBER = "lane_number"  # the numbered lane an actor is in ("#2 lane", "lane 3")
     CURB = "curb"  # the compass side of the street an actor stands at ("the north curb")
     QUANTITY = "quantity"  # words about a speed, a distance or a moment ("at 30 mph", "suddenly")
+    # words right before another actor that place this one by it: "emerges" ("steps out
+    # from behind a van"), "behind" ("coming up behind the coupe")
+    BY_ANOTHER = "by_another"
 
 
 class Target(StrEnum):
@@ -229,6 +232,7 @@ def _values(fact: Fact) -> frozenset[str] | None:
         Fact.HEADING: frozenset({"north", "east", "south", "west"}),
         Fact.CURB: frozenset({"north", "east", "south", "west"}),
         Fact.QUANTITY: frozenset({"speed", "distance", "timing"}),
+        Fact.BY_ANOTHER: frozenset({"emerges", "behind"}),
         **{
             fact: frozenset({"true"})
             for fact in (
