@@ -141,15 +141,20 @@ def _adversary_direction(spec: ScenarioSpec) -> Direction | None:
             return turn
     if "spawn_position" not in facts:
         return None
-    return {
-        P.CROSSING_FROM_LEFT: Direction.CROSSING_LEFT_TO_RIGHT,
-        P.CROSSING_FROM_RIGHT: Direction.CROSSING_RIGHT_TO_LEFT,
-        P.ONCOMING: Direction.OPPOSITE,
-        P.AHEAD_SAME_LANE: Direction.SAME,
-        P.BEHIND_SAME_LANE: Direction.SAME,
-        P.ADJACENT_LANE_LEFT: Direction.SAME,
-        P.ADJACENT_LANE_RIGHT: Direction.SAME,
-    }.get(spec.spawn_position)
+    return _DIRECTION_OF_START.get(spec.spawn_position)
+
+
+#: The way a road user starting there goes, when nothing else is read (a roadside start
+#: says nothing of it).
+_DIRECTION_OF_START = {
+    P.CROSSING_FROM_LEFT: Direction.CROSSING_LEFT_TO_RIGHT,
+    P.CROSSING_FROM_RIGHT: Direction.CROSSING_RIGHT_TO_LEFT,
+    P.ONCOMING: Direction.OPPOSITE,
+    P.AHEAD_SAME_LANE: Direction.SAME,
+    P.BEHIND_SAME_LANE: Direction.SAME,
+    P.ADJACENT_LANE_LEFT: Direction.SAME,
+    P.ADJACENT_LANE_RIGHT: Direction.SAME,
+}
 
 
 def _pair(
@@ -186,7 +191,10 @@ def score_item(item: LabeledDescription, spec: ScenarioSpec) -> dict[str, list[b
             direction = _adversary_direction(read)
         elif read is not None:
             position = read.start
-            direction = Direction.STATIONARY if read.stationary else None
+            if read.stationary:
+                direction = Direction.STATIONARY
+            elif read.start is not None:
+                direction = _DIRECTION_OF_START.get(read.start)
         if actor.start is not None:
             if position is None:
                 out["side"].append(None)

@@ -66,9 +66,30 @@ def words_of(cast: Cast, mention: Mention) -> list[tuple[int, int]]:
     )
     for span in mention.spans:
         lead = _passive_verb_start(text, phrase_start(text, span.start))
+        opener = _fronted_participle(cast, lead)
+        if opener is not None:
+            stretches.append(opener)
         end = next((s for s in starts if s > span.end), len(text))
         stretches.append((lead, min(end, sentence_end(text, span.end))))
     return stretches
+
+
+# "Merging from the on-ramp on the right, a truck ...": a sentence (or clause after a
+# semicolon) that opens with a participle and a comma tells about the actor named next.
+_OPENER = re.compile(r"(?:^|[.;!?]\s+)([A-Z][a-z]+(?:ing|ed)\b[^.;!?,]*),\s*$")
+
+
+def _fronted_participle(cast: Cast, lead: int) -> tuple[int, int] | None:
+    """The opening participle phrase right before the phrase at `lead`, when no one else
+    is named in it (in "Turning left, the ego ..." it is the ego's)."""
+    found = _OPENER.search(cast.text, max(0, lead - 160), lead)
+    if found is None:
+        return None
+    start, end = found.span(1)
+    named = [s for m in cast.others for s in m.spans] + list(cast.ego)
+    if any(start <= s.start < end for s in named):
+        return None
+    return start, end
 
 
 # "(is) struck from behind by a car": the passive verb before "by" says what the agent did.
