@@ -1,0 +1,62 @@
+"""Where another road user starts, said in ways the first rules did not know (issue 28):
+clock positions, British sides, a start said by another actor, an opening participle."""
+
+from __future__ import annotations
+
+import pytest
+
+from arise.evaluate.fidelity import DEVSET_DIR, DevSet, load_devset
+from arise.language.lexicon import slot_key, slot_word
+from arise.language.readers import read_description
+
+
+@pytest.mark.parametrize(
+    ("word", "canonical"),
+    [
+        ("R", "right"),
+        ("Left", "left"),
+        ("2 o'clock", "right"),
+        ("10  o'clock", "left"),
+        ("Nearside", "left"),
+        ("near-side", "left"),
+        ("off side", "right"),
+    ],
+)
+def test_a_slot_word_is_canonical_however_it_is_spaced(word: str, canonical: str) -> None:
+    assert slot_word(word) == canonical
+    assert slot_key("Near-Side") == slot_key("nearside") == slot_key("near side")
+
+
+@pytest.mark.parametrize(
+    ("text", "start"),
+    [
+        # clock positions seen from the driver's seat
+        ("A lorry at our 4 o'clock keeps pace with us on the ring road.", "adjacent_lane_right"),
+        ("Tractor at the AV's 11 o'clock, coming out of a farm track.", "adjacent_lane_left"),
+        ("A cyclist waits at our 6 o'clock as the lights change.", "behind_same_lane"),
+        # the walker is placed by the thing it steps out from; 'it' is the thing named last
+        (
+            "A skip lorry is parked on the left and a man walks out from in front of it.",
+            "crossing_road_from_left",
+        ),
+        # the opener is the actor's own words, not the ego's
+        (
+            "Pulling out of a petrol station on the right, a taxi crosses in front of us.",
+            "crossing_road_from_right",
+        ),
+    ],
+)
+def test_new_ways_of_saying_a_start(text: str, start: str) -> None:
+    assert read_description(text).facts["spawn_position"].value == start
+
+
+def test_an_opener_that_names_the_ego_is_not_the_actors() -> None:
+    reading = read_description("Turning left off the slip road, the ego meets a van.")
+    assert "spawn_position" not in reading.facts
+
+
+def test_the_variants_set_loads_and_each_actor_has_a_start() -> None:
+    items = load_devset(DEVSET_DIR / "variants.jsonl")
+    assert len(items) == 36 and {item.set for item in items} == {DevSet.VARIANTS}
+    assert all(actor.start is not None for item in items for actor in item.truth.actors)
+    assert sum(len(item.truth.actors) > 1 for item in items) >= 5  # scenes of several roles
