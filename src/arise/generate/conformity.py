@@ -246,12 +246,22 @@ def _starts_on_route(ego: AgentTrace, adversary: AgentTrace) -> bool:
 
 
 def _reach(ego: AgentTrace, adversary: AgentTrace) -> float | None:
-    """Smallest distance from the adversary, at any step, to the path the ego drove."""
+    """Smallest distance from the adversary, at any step, to the path the ego's body swept
+    (its centre's path, stretched by half its length at both ends: a car that runs into a
+    standing ego's rear bumper is on its path)."""
     if not ego.trajectory or not adversary.trajectory:
         return None
     from shapely.geometry import LineString, Point
 
-    path_points = [(p.x, p.y) for p in ego.trajectory]
+    first, last = ego.trajectory[0], ego.trajectory[-1]
+    half = ego.length / 2
+
+    def along(point: TracePoint, metres: float) -> tuple[float, float]:
+        return point.x - math.sin(point.heading) * metres, point.y + math.cos(
+            point.heading
+        ) * metres
+
+    path_points = [along(first, -half), *((p.x, p.y) for p in ego.trajectory), along(last, half)]
     path = LineString(path_points) if len(set(path_points)) > 1 else Point(path_points[0])
     return min(path.distance(Point(p.x, p.y)) for p in adversary.trajectory)
 
