@@ -65,3 +65,23 @@ def test_report_with_search_trials_adds_the_column(
     row = next(line for line in report.splitlines() if line.startswith("| critical after search"))
     assert ("1.000" if search["critical"] else "0.000") in row
     assert json.loads((Path(record.out_dir or "") / "search" / "search.json").read_text())
+    # The same pass against an agent: its own folder, and the record says who drove.
+    again = runner.invoke(
+        app, ["report", str(out / "bench.sqlite"), "--search-trials", "2", "--agent", "blind"]
+    )
+    assert again.exit_code == 0, again.output
+    with BenchStore(out / "bench.sqlite") as store:
+        (record,) = store.runs()
+    search = (record.criticality or {})["search"]
+    assert search["agent"] == "blind" and search["trials"] == 2
+    folder = Path(record.out_dir or "") / "search-blind"
+    assert json.loads((folder / "search.json").read_text())["agent"] == "blind"
+
+
+def test_report_refuses_a_bad_agent_before_searching(tmp_path: Path) -> None:
+    database = tmp_path / "bench.sqlite"
+    database.write_bytes(b"")
+    result = runner.invoke(
+        app, ["report", str(database), "--search-trials", "2", "--agent", "nosuch"]
+    )
+    assert result.exit_code == 2 and "unknown agent 'nosuch'" in result.output

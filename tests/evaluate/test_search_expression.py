@@ -62,3 +62,35 @@ def test_score_uses_the_expression_and_caps_like_the_built_in_objectives() -> No
     assert score(Objective.CUSTOM, True, 0.0, 0.0, expression=collision_only) == 0.0
     with pytest.raises(SearchError):
         score(Objective.CUSTOM, False, 1.0, 1.0)
+
+
+def test_the_drive_metrics_are_names_too_and_empty_ones_read_neutral() -> None:
+    from arise.drive.metrics_types import DrivingMetrics
+    from arise.evaluate.search.expression import DRIVE_METRICS, NAMES
+    from arise.evaluate.search.objective import drive_values
+
+    # Every metric of `arise drive` by its column name; `collision` stays the trace's.
+    assert set(DRIVE_METRICS) == set(DrivingMetrics.model_fields) - {"collision"}
+    assert {"min_ttc", "min_distance", "collision", "overall_score", "red_lights_run"} <= set(NAMES)
+    values = drive_values({"overall_score": 0.4, "red_lights_run": 2, "min_ttc_s": None})
+    assert values["overall_score"] == 0.4 and values["red_lights_run"] == 2.0
+    assert values["min_ttc_s"] == 10.0 and values["pet_s"] == 10.0  # no conflict
+    assert values["lane_invasions"] == 0.0  # not measured: 0
+    goal = parse_expression("overall_score + red_lights_run - min(min_ttc_s, 5) / 10")
+    assert goal.needs_metrics and not parse_expression("min_ttc * 2").needs_metrics
+    metrics = {"overall_score": 0.4, "red_lights_run": 2, "min_ttc_s": None}
+    assert score(
+        Objective.CUSTOM, False, 3.0, 2.0, metrics=metrics, expression=goal
+    ) == pytest.approx(1.9)
+
+
+def test_an_unknown_name_lists_the_drive_metrics() -> None:
+    with pytest.raises(SearchError, match="unknown name 'os'.*red_lights_run.*overall_score"):
+        parse_expression("os + 1")
+
+
+def test_the_score_objective_is_safebenchs_overall_score_as_it_is() -> None:
+    assert score(Objective.SCORE, True, 0.0, 0.0, metrics={"overall_score": 0.3244}) == 0.3244
+    assert score(Objective.SCORE, False, 5.0, 9.0, metrics={"overall_score": 0.95}) == 0.95
+    with pytest.raises(SearchError, match="driving metrics"):
+        score(Objective.SCORE, False, 5.0, 9.0)
