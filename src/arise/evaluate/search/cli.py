@@ -20,7 +20,7 @@ from rich.table import Table
 from arise import terminal
 from arise.evaluate.search.errors import SearchError
 from arise.evaluate.search.executor import Executor
-from arise.evaluate.search.expression import NAMES
+from arise.evaluate.search.expression import FACTS
 from arise.evaluate.search.objective import Objective
 from arise.evaluate.search.outputs import describe
 from arise.evaluate.search.runner import SEARCH_SPAWN_ATTEMPTS, SearchResult
@@ -99,8 +99,10 @@ def search_command(
         str | None,
         typer.Option(
             help="The custom objective, smaller = more critical: arithmetic over "
-            + ", ".join(NAMES)
-            + " (min, max, abs, comparisons and 'a if c else b' too; docs/search.md). "
+            + ", ".join(FACTS)
+            + " and every `arise drive` metric by its name (overall_score, red_lights_run, "
+            "route_completion, min_ttc_s, ...; docs/search.md), with min, max, abs, "
+            "comparisons and 'a if c else b'. "
             "Example: --objective custom --expression 'min_ttc + 0.2 * min_distance'"
         ),
     ] = None,
