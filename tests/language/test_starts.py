@@ -44,6 +44,19 @@ def test_a_slot_word_is_canonical_however_it_is_spaced(word: str, canonical: str
             "Pulling out of a petrol station on the right, a taxi crosses in front of us.",
             "crossing_road_from_right",
         ),
+        (
+            "Some way ahead on the left, a removal van pulls out into our lane.",
+            "adjacent_lane_left",
+        ),
+        # the ego's bearing in its opener; the sedan's own bearing is not the ego's
+        (
+            "Travelling north on Quarry Lane, the AV was hit by a westbound cab at the crossing.",
+            "crossing_road_from_right",
+        ),
+        # "it" is a phrase of its own: "the AV's left as | it" does not open at "the"
+        ("Jogger crosses from the AV's left as it pulls off.", "crossing_road_from_left"),
+        # numbered lanes spelled out, after the word "lane"
+        ("I was in lane two and a minibus in lane three drifted over.", "adjacent_lane_right"),
     ],
 )
 def test_new_ways_of_saying_a_start(text: str, start: str) -> None:

@@ -74,14 +74,21 @@ def words_of(cast: Cast, mention: Mention) -> list[tuple[int, int]]:
     return stretches
 
 
-# "Merging from the on-ramp on the right, a truck ...": a sentence (or clause after a
-# semicolon) that opens with a participle and a comma tells about the actor named next.
-_OPENER = re.compile(r"(?:^|[.;!?]\s+)([A-Z][a-z]+(?:ing|ed)\b[^.;!?,]*),\s*$")
+# "Merging from the on-ramp on the right, a truck ...", "Just ahead on the right, a bus
+# ...": a sentence (or clause after a semicolon) that opens with a phrase and a comma tells
+# about the actor named next, unless the phrase is a clause of its own ("While the ego
+# turns, ...", "When the light changed, ...").
+_OPENER = re.compile(
+    r"(?:^|[.;!?]\s+)"
+    r"((?!(?:while|whilst|when|as|after|before|if|because|since|although|though|once|until"
+    r"|where|then|but|and|so|then)\b)[A-Z][\w'-]*\b[^.;!?,]{0,80}),\s*$",
+    re.I,
+)
 
 
 def _fronted_participle(cast: Cast, lead: int) -> tuple[int, int] | None:
-    """The opening participle phrase right before the phrase at `lead`, when no one else
-    is named in it (in "Turning left, the ego ..." it is the ego's)."""
+    """The opening phrase right before the phrase at `lead`, when no one else is named in
+    it (in "Turning left, the ego ..." it is the ego's)."""
     found = _OPENER.search(cast.text, max(0, lead - 160), lead)
     if found is None:
         return None
@@ -371,12 +378,19 @@ def read_compass(cast: Cast, mention: Mention) -> GroundedFact | None:
     """A side from compass words ("the AV was northbound; an eastbound car"), as crash
     reports give them: the ego's bearing from its own words, the actor's from its words."""
     ego_bearing = None
-    others = sorted(s.start for m in cast.others for s in m.spans)
+    # up to the other's phrase: "the AV was hit by an eastbound sedan" is the sedan's bearing
+    others = sorted(phrase_start(cast.text, s.start) for m in cast.others for s in m.spans)
     for span in cast.ego:
         # In the ego's own words: up to the next actor named or the end of the sentence
         # ("V1 entered the intersection of A Street and 9th Avenue eastbound").
         until = min([s for s in others if s > span.end] + [sentence_end(cast.text, span.end)])
         found = _heading(cast.text, span.end, min(until, span.end + 120))
+        opener = _fronted_participle(cast, phrase_start(cast.text, span.start))
+        if opener is not None and found is None:  # "Heading south on Pike Road, the AV ..."
+            found = _heading(cast.text, *opener)
+            if found:
+                ego_bearing = _COMPASS[found.value]
+                break
         if found and not re.search(r"[.;]", cast.text[span.end : found.start]):
             ego_bearing = _COMPASS[found.value]
             break
