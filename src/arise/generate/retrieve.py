@@ -396,8 +396,12 @@ def _first_core(
             both = defined | set(spawn.defines)
             route = pair_maneuver(geometry, spawn)
             usable = [b for b in behaviors if set(b.needs) <= both and turn_agrees(spec, b, route)]
-            if route in (AdversaryManeuver.TURN_LEFT, AdversaryManeuver.TURN_RIGHT):
-                # A route that turns is only driven by a behavior that follows it.
+            if route in (AdversaryManeuver.TURN_LEFT, AdversaryManeuver.TURN_RIGHT) or (
+                CONFLICT_ROUTE in spawn.needs and not spec.adversary_stationary
+            ):
+                # A route that turns, or one laid across the ego's through a junction, is
+                # only driven by a behavior that follows it: a lane follower would take any
+                # turn and cross at no time set by the ego (issue 31).
                 usable = [b for b in usable if "advRoute" in b.needs] or usable
             if usable and fits_a_map([geometry, spawn, usable[0]]):
                 return _Core(geometry, spawn, usable, fit)
