@@ -73,3 +73,18 @@ def test_the_variants_set_loads_and_each_actor_has_a_start() -> None:
     assert len(items) == 36 and {item.set for item in items} == {DevSet.VARIANTS}
     assert all(actor.start is not None for item in items for actor in item.truth.actors)
     assert sum(len(item.truth.actors) > 1 for item in items) >= 5  # scenes of several roles
+
+
+@pytest.mark.parametrize(
+    "text",
+    [
+        # the AV named in words and a numbered other party (no V1)
+        "The AV waited at the light. Unit 2, a grey estate in the lane to its left, pulled across.",
+        # "the AV" further on is the one struck, not what V2 is
+        "V2, a flatbed truck in the right lane, drifted left and scraped the AV's right side.",
+    ],
+)
+def test_a_numbered_party_that_meets_the_av_is_not_the_av(text: str) -> None:
+    reading = read_description(text)
+    assert reading.adversary is not None and reading.adversary.quote.startswith(("Unit 2", "V2"))
+    assert reading.cast.ego

@@ -67,6 +67,9 @@ _NUMBERED_WALKER = re.compile(r"\bP([1-9])\b(?:'s)?")
 _AUTONOMOUS = re.compile(
     r"\b(?:autonomous|driverless|self-driving|automated|av|ads|robotaxi|test vehicle)\b", re.I
 )
+# "Unit 2, a hatchback in the right lane, struck the AV": "the AV" further on is another
+# party, not what the numbered one is ("V1 (the autonomous test vehicle)" is).
+_ANOTHER_AV = re.compile(r"^.{25,}\bthe\s+$", re.S)
 # NHTSA's typology names the ego "Vehicle" with no article, at a sentence's start.
 _NHTSA_EGO = re.compile(r"(?:^|(?<=[.;:]\s))Vehicle(?:'s)?\b")
 _NHTSA_EGO_ANYWHERE = re.compile(r"(?<![\w'])(?<!\bthe )(?<!\ba )(?<!\ban )Vehicle(?:'s)?\b")
@@ -207,7 +210,8 @@ def _overlaps(spans: list[tuple[int, int]], start: int, end: int) -> bool:
 def _numbered_ego(text: str) -> str | None:
     """Which number the ego has among numbered vehicles ("V1"...), or None if none are.
 
-    The one whose sentence says it is autonomous; else 1, the usual first party."""
+    The one whose sentence says it is autonomous; else 1, the usual first party; else, when
+    the text names the ego in words ("the AV ... Unit 2, a hatchback"), none of them."""
     numbers = {m.group(1) for m in _NUMBERED.finditer(text)}
     if not numbers:
         return None
@@ -215,9 +219,14 @@ def _numbered_ego(text: str) -> str | None:
         end = min(sentence_end(text, match.end()), match.end() + 80)
         following = _NUMBERED.search(text, match.end(), end)
         window = text[match.end() : following.start() if following else end]
-        if _AUTONOMOUS.search(window):
+        if any(
+            not _ANOTHER_AV.search(window[: hit.start()]) for hit in _AUTONOMOUS.finditer(window)
+        ):
             return match.group(1)
-    return "1" if "1" in numbers else min(numbers)
+    if "1" in numbers:
+        return "1"
+    worded = any(m.group(0) != "i" for m in class_pattern("ego").finditer(text))
+    return None if worded else min(numbers)
 
 
 def _ego_spans(text: str) -> list[Span]:
