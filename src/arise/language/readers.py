@@ -155,6 +155,22 @@ def _ego_follows(cast: Cast, mention: Mention) -> GroundedFact | None:
 _ADJACENT = (RelativePosition.ADJACENT_LANE_LEFT, RelativePosition.ADJACENT_LANE_RIGHT)
 
 
+def _ego_passes(cast: Cast, mention: Mention) -> GroundedFact | None:
+    """ "the ego pulls out to pass a slow bicycle": the ego's own verb of passing right
+    before the actor puts it ahead (a fallback: the actor's words said nothing of where)."""
+    for span in mention.spans:
+        lead = phrase_start(cast.text, span.start)
+        found = cue_before(Fact.EGO_PASSES, cast.text, lead)
+        if found and subject_of(cast, found.start) == "ego":
+            return GroundedFact(
+                name="spawn_position",
+                value=RelativePosition.AHEAD_SAME_LANE.value,
+                source=FactSource.TEXT,
+                quote=cast.text[found.start : span.end],
+            )
+    return None
+
+
 def _lane_number(cast: Cast, stretches: list[tuple[int, int]]) -> Hit | None:
     """The first numbered lane named in these stretches of text."""
     for start, end in stretches:
@@ -340,7 +356,7 @@ def read_position(cast: Cast, mention: Mention, *, by_another: bool = True) -> G
             )
             best = (target.start, -1, position, f"{lane_side.quote} ... {target.quote}")
     if best is None:
-        return _by_another(cast, mention) if by_another else None
+        return (_by_another(cast, mention) or _ego_passes(cast, mention)) if by_another else None
     return GroundedFact(
         name="spawn_position", value=best[2].value, source=FactSource.TEXT, quote=best[3]
     )

@@ -63,6 +63,8 @@ class Fact(StrEnum):
     EGO_BEHIND = (
         "ego_behind"  # the ego's verb right before an actor puts it ahead ("following a van")
     )
+    # the ego's verb of passing right before an actor: ahead, when nothing else says where
+    EGO_PASSES = "ego_passes"
     BETWEEN = "between"  # squeezed between the ego and something on a side
     EGO_OVERTAKES = "ego_overtakes"  # the ego overtakes (a lane change to the left)
     THROUGH_ONCOMING = "through_oncoming"  # around it through the oncoming lane (a bypass)
@@ -238,6 +240,7 @@ def _values(fact: Fact) -> frozenset[str] | None:
             for fact in (
                 Fact.TARGET_LANE,
                 Fact.EGO_BEHIND,
+                Fact.EGO_PASSES,
                 Fact.EGO_OVERTAKES,
                 Fact.THROUGH_ONCOMING,
                 Fact.FROM_BEHIND,
