@@ -62,7 +62,7 @@ Examples:
 
   arise search my.scenic --agent my_agent.py:Careful --objective score
 
-  arise search my.scenic --agent idm --objective custom --expression 'overall_score + red_lights_run'
+  arise search my.scenic --objective custom --expression 'overall_score + red_lights_run'
 
   arise search my.scenic --sampler ce,random,halton --objective min-ttc --seed 1
 
