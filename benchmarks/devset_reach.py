@@ -71,7 +71,9 @@ def runs_of(bench_out: Path, items: dict[str, LabeledDescription]) -> list[Run]:
     found = []
     for script in sorted(bench_out.glob("runs/*/*/scenario.scenic")):
         item = items.get(script.parent.parent.name)
-        if item is not None and any(a.role is not None and a.role.value == "adversary" for a in item.truth.actors):
+        if item is not None and any(
+            a.role is not None and a.role.value == "adversary" for a in item.truth.actors
+        ):
             found.append(Run(item, script))
     return found
 

@@ -96,6 +96,7 @@ DEVSET_FILES: dict[DevSet, str] = {
     DevSet.NHTSA: "nhtsa.jsonl",
     DevSet.CRASH_REPORT: "crash_reports.jsonl",
     DevSet.STYLES: "styles.jsonl",
+    DevSet.VARIANTS: "variants.jsonl",
 }
 
 
