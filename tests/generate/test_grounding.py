@@ -438,3 +438,28 @@ def test_an_on_ramp_makes_a_merge_and_the_reader_says_who_is_on_it(
     spec = ground(text, answer(road_type="highway")).spec
     assert spec.road_type.value == "merge"
     assert spec.ego_on_ramp is ego_on_ramp
+
+
+@pytest.mark.parametrize(
+    ("text", "contact", "timing"),
+    [
+        (
+            "A van pulls out of a driveway on the right just as the ego passes and hits it.",
+            True,
+            "late",
+        ),
+        ("A cyclist crosses from the left far ahead of the ego.", False, "early"),
+        ("A jogger crosses from the left and the ego slows down for him.", False, None),
+        ("A pickup nearly clips the ego while cutting across from the left.", True, None),
+    ],
+)
+def test_what_the_text_says_of_the_meeting_is_read_with_its_words(
+    text: str, contact: bool, timing: str | None
+) -> None:
+    spec = ground(text, answer()).spec
+    assert spec.contact_stated is contact
+    assert (spec.timing.value if spec.timing else None) == timing
+    by_name = {fact.name: fact for fact in spec.grounding}
+    if contact:
+        assert by_name["contact_stated"].source is FactSource.TEXT
+        assert quote_in(text, by_name["contact_stated"].quote or "")

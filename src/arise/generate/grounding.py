@@ -47,6 +47,7 @@ from arise.vocabulary import (
     RoadType,
     Side,
     StartDetail,
+    Timing,
 )
 
 # -- the grounded spec ----------------------------------------------------------------------
@@ -290,6 +291,8 @@ def ground(description: str, answer: ExtractionAnswer, read: Reading | None = No
         ego_stopped="ego_stopped" in facts,
         ego_on_ramp="ego_on_ramp" in facts,
         quantities_stated="quantity" in facts,
+        contact_stated="contact_stated" in facts,
+        timing=Timing(facts["timing"].value) if "timing" in facts else None,
         ego_plan=EgoPlan(facts["ego_plan"].value) if "ego_plan" in facts else None,
         start_detail=(
             StartDetail(facts["start_detail"].value) if "start_detail" in facts else None

@@ -37,6 +37,8 @@ def read_facts(description: str) -> dict[str, dict[str, str]]:
         "weather": ("scene", "weather"),
         "road_type": ("scene", Fact.ROAD.value),
         "quantity": ("scene", Fact.QUANTITY.value),
+        "contact_stated": ("scene", Fact.MEETING.value),
+        "timing": ("scene", Fact.TIMING.value),
     }
     for name, fact in reading.facts.items():
         if name in names:

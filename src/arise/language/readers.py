@@ -767,7 +767,20 @@ def read_description(description: str, adversary_quote: str | None = None) -> Re
     read_ego_on_ramp(reading)
     read_road(reading)
     read_quantity(reading)
+    read_meeting(reading)
     return reading
+
+
+def read_meeting(reading: Reading) -> None:
+    """What the text says of the meeting itself: that the two touched or nearly did
+    (`contact_stated`), and when the other made its move (`timing`); the first such words."""
+    text = reading.cast.text
+    for fact, name in ((Fact.MEETING, "contact_stated"), (Fact.TIMING, "timing")):
+        found = rulebook().first(fact, text)
+        if found is not None:
+            reading.facts[name] = GroundedFact(
+                name=name, value=found.value, source=FactSource.TEXT, quote=found.quote
+            )
 
 
 def read_quantity(reading: Reading) -> None:

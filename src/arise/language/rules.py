@@ -35,7 +35,14 @@ from pydantic import BaseModel, ConfigDict, Field, ValidationError
 from arise.language.errors import RuleError
 from arise.language.lexicon import SAFE_LOADER, lexicon, slot_word
 from arise.language.patterns import compile_pattern
-from arise.vocabulary import EgoPlan, RelativePosition, RequirementKind, RoadType, StartDetail
+from arise.vocabulary import (
+    EgoPlan,
+    RelativePosition,
+    RequirementKind,
+    RoadType,
+    StartDetail,
+    Timing,
+)
 
 
 class Fact(StrEnum):
@@ -82,6 +89,10 @@ class Fact(StrEnum):
     LANE_NUMBER = "lane_number"  # the numbered lane an actor is in ("#2 lane", "lane 3")
     CURB = "curb"  # the compass side of the street an actor stands at ("the north curb")
     QUANTITY = "quantity"  # words about a speed, a distance or a moment ("at 30 mph", "suddenly")
+    MEETING = (
+        "meeting"  # the two touched or nearly did: contact, near_miss ("struck", "nearly hits")
+    )
+    TIMING = "timing"  # when the other moved, seen from the ego: late, early ("just as it passes")
     # words right before another actor that place this one by it: "emerges" ("steps out
     # from behind a van"), "behind" ("coming up behind the coupe")
     BY_ANOTHER = "by_another"
@@ -190,6 +201,7 @@ RULE_FILES = (
     "roles.yaml",
     "requirements.yaml",
     "quantities.yaml",
+    "conflict.yaml",
 )
 
 
@@ -234,6 +246,8 @@ def _values(fact: Fact) -> frozenset[str] | None:
         Fact.HEADING: frozenset({"north", "east", "south", "west"}),
         Fact.CURB: frozenset({"north", "east", "south", "west"}),
         Fact.QUANTITY: frozenset({"speed", "distance", "timing"}),
+        Fact.MEETING: frozenset({"contact", "near_miss"}),
+        Fact.TIMING: frozenset(Timing),
         Fact.BY_ANOTHER: frozenset({"emerges", "behind"}),
         **{
             fact: frozenset({"true"})
