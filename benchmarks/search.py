@@ -26,7 +26,7 @@ scripts where it found one), per sampler; and the driving metrics of the critica
 
 Run:  .venv/bin/python benchmarks/search.py [--trials 30] [--samplers random,halton,ce]
           [--seeds 0,1] [--workers 2] [--out out/bench-search] [--ids so-4,lc-1] [--timing]
-          [--agents blind,cautious,idm] [--scripts out/bench-dev ...]
+          [--agents blind,cautious,idm] [--scripts out/bench-dev ...] [--objective score]
 Trials go to OUT/search.sqlite: a killed run resumes. Prints Markdown tables; copy them
 into docs/benchmarks.md with the machine, the date and the load.
 """
@@ -157,7 +157,7 @@ def search(
 ) -> tuple[SearchResult, float]:
     config = SearchConfig(
         script=script,
-        objective=Objective.MIN_TTC,
+        objective=Objective(args.objective),
         sampler=sampler,
         trials=args.trials,
         workers=workers or args.workers,
@@ -174,12 +174,20 @@ def _mean(values: list[float], digits: int = 1) -> str:
     return f"{statistics.mean(values):.{digits}f}" if values else "-"
 
 
+def _best_label(results: dict[SamplerKind, list[tuple[SearchResult, float]]]) -> str:
+    """What the best score is: TTC (s), as the tables always said, or the objective."""
+    objective = next((r.config.objective for runs in results.values() for r, _ in runs), None)
+    if objective is None or objective is Objective.MIN_TTC:
+        return "TTC (s)"
+    return objective.label
+
+
 def sampler_table(results: dict[SamplerKind, list[tuple[SearchResult, float]]], budget: int) -> str:
     lines = [
         "| sampler | scripts made critical | trials to first critical (mean over found; "
         "median) | critical trials (mean share) | scripts with a collision | trials to first "
-        "collision (mean over found) | collision trials (mean share) | mean best TTC (s) "
-        "| wall time of one search (mean s; fresh ones) |",
+        f"collision (mean over found) | collision trials (mean share) | mean best "
+        f"{_best_label(results)} | wall time of one search (mean s; fresh ones) |",
         "|---|---|---|---|---|---|---|---|---|",
     ]
     for sampler, runs in results.items():
@@ -214,7 +222,10 @@ def script_table(
     results: dict[SamplerKind, list[tuple[SearchResult, float]]], scripts: list[str]
 ) -> str:
     samplers = list(results)
-    header = "| script | " + " | ".join(f"{s.value}: best TTC (first critical)" for s in samplers)
+    label = _best_label(results)
+    header = "| script | " + " | ".join(
+        f"{s.value}: best {label} (first critical)" for s in samplers
+    )
     lines = [header + " |", "|---" * (len(samplers) + 1) + "|"]
     names = [
         f"{name} (seed {r.config.seed})"
@@ -350,6 +361,13 @@ def main() -> None:
     parser.add_argument("--ids", default=None, help="comma-separated prompt ids (e.g. so-4,lc-1)")
     parser.add_argument("--all", action="store_true", help="every dev script, critical or not")
     parser.add_argument("--timing", action="store_true", help="also time the executors")
+    parser.add_argument(
+        "--objective",
+        default=Objective.MIN_TTC.value,
+        choices=[o.value for o in Objective if o is not Objective.CUSTOM],
+        help="what the samplers minimise (a failure is a collision or a TTC under 1 s "
+        "whatever the objective)",
+    )
     parser.add_argument(
         "--agents",
         default=None,

@@ -354,11 +354,14 @@ def _print_report_event(event: ReportEvent) -> None:
             terminal.text(f"re-checked {event.count} executed run(s); sandbox: ", event.sandbox)
         )
     elif isinstance(event, RunSearched):
+        agent = ((event.record.criticality or {}).get("search") or {}).get("agent")
+        driver = f" for {agent}" if agent and agent != "scripted" else ""
         console.print(
             terminal.text(
                 "searched ",
                 terminal.name(event.record.task.label()),
                 ": critical" if event.critical else ": not critical",
+                driver,
                 f" within {event.trials} trials",
             )
         )
