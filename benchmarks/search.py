@@ -164,6 +164,7 @@ def search(
         executor=executor,
         seed=seed,
         check=CheckOptions(timeout=60, spawn_attempts=SEARCH_SPAWN_ATTEMPTS, agent=agent),
+        until_found=args.until_found,
     )
     started = time.perf_counter()
     result = run_search(config, store)
@@ -361,6 +362,12 @@ def main() -> None:
     parser.add_argument("--ids", default=None, help="comma-separated prompt ids (e.g. so-4,lc-1)")
     parser.add_argument("--all", action="store_true", help="every dev script, critical or not")
     parser.add_argument("--timing", action="store_true", help="also time the executors")
+    parser.add_argument(
+        "--until-found",
+        action="store_true",
+        help="stop each search at its first failure (trials to the first failure, found or "
+        "not within --trials, are all the criticality tables need)",
+    )
     parser.add_argument(
         "--objective",
         default=Objective.MIN_TTC.value,

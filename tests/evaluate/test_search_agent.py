@@ -210,3 +210,23 @@ def test_a_users_agent_file_drives_every_trial(crossing: Path, tmp_path: Path) -
     assert missing.exit_code == 2 and "Nope" in missing.output
     with sqlite3.connect(tmp_path / "nope" / "search.sqlite") as db:
         assert db.execute("SELECT count(*) FROM trials").fetchone() == (0,)
+
+
+@pytest.mark.slow
+def test_until_found_stops_at_the_first_failure_and_resumes_into_the_full_search(
+    crossing: Path, tmp_path: Path
+) -> None:
+    pytest.importorskip("verifai", reason="the verifai extra is not installed")
+    out = tmp_path / "out"
+    args = ["search", str(crossing), "--agent", "blind", "--objective", "collision"]
+    args += ["--trials", "6", "--out", str(out), "--no-replay"]
+    first = runner.invoke(app, [*args, "--until-found"])
+    assert first.exit_code == 0, first.output
+    (stopped,) = json.loads((out / "search.json").read_text(encoding="utf-8"))["searches"]
+    assert stopped["first_found"] is not None
+    assert stopped["trials"] == stopped["first_found"] < 6, "no trial after the first failure"
+    again = runner.invoke(app, args)  # the same search, every trial: it resumes
+    assert again.exit_code == 0, again.output
+    (full,) = json.loads((out / "search.json").read_text(encoding="utf-8"))["searches"]
+    assert full["trials"] == 6 and full["first_found"] == stopped["first_found"]
+    assert full["resumed"] == stopped["trials"]

@@ -149,6 +149,14 @@ def search_command(
     replay: Annotated[
         bool, typer.Option(help="Run the critical script again for its replay and .xosc.")
     ] = True,
+    until_found: Annotated[
+        bool,
+        typer.Option(
+            "--until-found",
+            help="Stop at the first trial that finds a failure (a collision, or a TTC under "
+            "1 s; with --objective collision, a collision) instead of spending every trial.",
+        ),
+    ] = False,
 ) -> None:
     request = SearchRequest(
         target=target,
@@ -166,6 +174,7 @@ def search_command(
         ),
         replay=replay,
         agent=agent,
+        until_found=until_found,
     )
     with _SearchPrinter() as printer:
         session = search(request, printer.on_event)  # Ctrl-C: Interrupted, exit 130

@@ -63,6 +63,10 @@ class SearchConfig:
     ray_address: str | None = None
     #: the user's objective when ``objective`` is CUSTOM (checked by `parse_expression`)
     expression: Expression | None = None
+    #: Stop after the batch in which a trial first found what the search looks for (the
+    #: trials to a first failure are all a criticality table needs). Not part of the key: a
+    #: search stopped early resumes into the full one.
+    until_found: bool = False
 
     @property
     def agent(self) -> str | None:
@@ -330,6 +334,8 @@ def run_search(
                     value if value is not None else _failed_score(config.objective, result.trials),
                 )
             index += size
+            if config.until_found and result.first_found is not None:
+                break
     finally:
         if own_runner and active is not None:
             active.close()

@@ -50,6 +50,8 @@ class SearchRequest:
     replay: bool = True
     #: Who drives the ego in every trial (as `arise drive --agent`); None: the script.
     agent: str | None = None
+    #: Stop each sampler's search at its first failure (`SearchConfig.until_found`).
+    until_found: bool = False
 
 
 @dataclass(frozen=True)
@@ -123,6 +125,7 @@ def search(request: SearchRequest, on_event: OnSearchEvent | None = None) -> Sea
                 seed=request.seed,
                 check=check,
                 ray_address=request.ray_address,
+                until_found=request.until_found,
             )
             emit(SamplerStarted(config))
 
