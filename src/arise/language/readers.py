@@ -136,12 +136,14 @@ def _squeezed_beside(cast: Cast, mention: Mention) -> GroundedFact | None:
     return None
 
 
-def _ego_follows(cast: Cast, mention: Mention) -> GroundedFact | None:
-    """ "the AV was following a van", "travelling ... behind a box truck": the ego's own
-    verb right before the actor puts it ahead of the ego in its lane."""
+def _ego_verb_before(cast: Cast, mention: Mention, cue: Fact) -> GroundedFact | None:
+    """The ego's own verb right before the actor puts it ahead of the ego in its lane:
+    following it (`EGO_BEHIND`: "the AV was following a van", "travelling ... behind a box
+    truck") or passing it (`EGO_PASSES`: "the ego pulls out to pass a slow bicycle", a
+    fallback for when the actor's words say nothing of where)."""
     for span in mention.spans:
         lead = phrase_start(cast.text, span.start)
-        found = cue_before(Fact.EGO_BEHIND, cast.text, lead)
+        found = cue_before(cue, cast.text, lead)
         if found and subject_of(cast, found.start) == "ego":
             return GroundedFact(
                 name="spawn_position",
@@ -153,22 +155,6 @@ def _ego_follows(cast: Cast, mention: Mention) -> GroundedFact | None:
 
 
 _ADJACENT = (RelativePosition.ADJACENT_LANE_LEFT, RelativePosition.ADJACENT_LANE_RIGHT)
-
-
-def _ego_passes(cast: Cast, mention: Mention) -> GroundedFact | None:
-    """ "the ego pulls out to pass a slow bicycle": the ego's own verb of passing right
-    before the actor puts it ahead (a fallback: the actor's words said nothing of where)."""
-    for span in mention.spans:
-        lead = phrase_start(cast.text, span.start)
-        found = cue_before(Fact.EGO_PASSES, cast.text, lead)
-        if found and subject_of(cast, found.start) == "ego":
-            return GroundedFact(
-                name="spawn_position",
-                value=RelativePosition.AHEAD_SAME_LANE.value,
-                source=FactSource.TEXT,
-                quote=cast.text[found.start : span.end],
-            )
-    return None
 
 
 def _lane_number(cast: Cast, stretches: list[tuple[int, int]]) -> Hit | None:
@@ -293,7 +279,7 @@ def read_position(cast: Cast, mention: Mention, *, by_another: bool = True) -> G
     none, from the start of another actor they place it by (`_by_another`)."""
     told = (
         read_lane_number(cast, mention)
-        or _ego_follows(cast, mention)
+        or _ego_verb_before(cast, mention, Fact.EGO_BEHIND)
         or _squeezed_beside(cast, mention)
     )
     if told is not None:
@@ -356,7 +342,11 @@ def read_position(cast: Cast, mention: Mention, *, by_another: bool = True) -> G
             )
             best = (target.start, -1, position, f"{lane_side.quote} ... {target.quote}")
     if best is None:
-        return (_by_another(cast, mention) or _ego_passes(cast, mention)) if by_another else None
+        return (
+            (_by_another(cast, mention) or _ego_verb_before(cast, mention, Fact.EGO_PASSES))
+            if by_another
+            else None
+        )
     return GroundedFact(
         name="spawn_position", value=best[2].value, source=FactSource.TEXT, quote=best[3]
     )
