@@ -23,20 +23,15 @@ from collections.abc import Iterable, Sequence
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 
-import numpy as np
-import shapely
-
-from arise.drive.metrics_encounters import min_ttc
-from arise.drive.metrics_track import Track, common_steps
+from arise.drive.metrics_encounters import min_gap, min_ttc
+from arise.drive.metrics_track import Track
+from arise.generate.conflict import ConflictLevel, conflict_met
 from arise.kb.loader import load_kb
 from arise.kb.plan import Composition, plan_validation
 from arise.kb.runner import builtin_maps
 from arise.kb.schema import Component, Entry
 from arise.validate import CheckOptions, WorkerPool, check_text
 
-#: A conflict: the boxes within this many metres, or a time-to-collision under TTC_S.
-GAP_M = 6.0
-TTC_S = 3.0
 AGENTS = ("blind", "cautious")
 #: The ego's target speed, as a share of the middle of its geometry's OPT_EGO_SPEED range.
 SPEED_FACTORS = (0.6, 1.4)
@@ -70,9 +65,7 @@ class Reach:
 
     @property
     def met(self) -> bool:
-        return (self.gap_m is not None and self.gap_m < GAP_M) or (
-            self.ttc_s is not None and self.ttc_s < TTC_S
-        )
+        return conflict_met(self.gap_m, self.ttc_s, ConflictLevel.REACH)
 
     def cell(self) -> str:
         if self.error:
@@ -114,13 +107,10 @@ def with_ego_speed(script: str, factor: float) -> str:
 
 
 def box_gap(a: Track, b: Track) -> float:
-    """The smallest distance between the two boxes over their common steps (0: contact)."""
-    ia, ib = common_steps(a, b)
-    if not len(ia):
-        return float("inf")
-    ca, cb = a.corners()[ia], b.corners()[ib]
-    gaps = shapely.distance(shapely.polygons(ca), shapely.polygons(cb))
-    return float(np.min(gaps))
+    """The smallest distance between the two boxes over their common steps (0: contact;
+    inf: no common step)."""
+    gap = min_gap(a, [b])
+    return float("inf") if gap is None else gap
 
 
 def run_case(case: Case, pool: WorkerPool, seed: int) -> Reach:

@@ -20,16 +20,15 @@ from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 from pathlib import Path
 
-from conflict_reach import GAP_M, TTC_S, box_gap
+from conflict_reach import box_gap
 
 from arise.drive.metrics_encounters import min_ttc
 from arise.drive.metrics_track import Track
 from arise.evaluate.fidelity import DEVSET_DIR, LabeledDescription, load_devset
+from arise.generate.conflict import ConflictLevel, conflict_met
 from arise.generate.conformity import find_adversary
 from arise.validate import CheckOptions, WorkerPool, check
 
-#: Contact, or a time-to-collision under this, is what "struck" or "near miss" asks for.
-CLOSE_TTC_S = 1.5
 STEPS = 300
 
 
@@ -48,15 +47,11 @@ class Met:
 
     @property
     def reached(self) -> bool:
-        return (self.gap_m is not None and self.gap_m < GAP_M) or (
-            self.ttc_s is not None and self.ttc_s < TTC_S
-        )
+        return conflict_met(self.gap_m, self.ttc_s, ConflictLevel.REACH)
 
     @property
     def close(self) -> bool:
-        return (self.gap_m is not None and self.gap_m <= 0.0) or (
-            self.ttc_s is not None and self.ttc_s < CLOSE_TTC_S
-        )
+        return conflict_met(self.gap_m, self.ttc_s, ConflictLevel.CLOSE)
 
 
 def labeled_items() -> dict[str, LabeledDescription]:

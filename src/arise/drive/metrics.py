@@ -35,6 +35,7 @@ from arise.drive.metrics_types import (
     overall_score,
     route_following,
 )
+from arise.generate.conflict import REACH_GAP_M, REACH_TTC_S
 from arise.validate.types import AgentTrace, SimulationFacts
 
 __all__ = [
@@ -46,10 +47,6 @@ __all__ = [
     "compute_metrics",
     "overall_score",
 ]
-
-#: The adversary is within reach of the ego: boxes this close (m), or a TTC under this (s).
-REACH_GAP_M = 6.0
-REACH_TTC_S = 3.0
 
 #: The behavior our scripts give their adversary (arise.kb.actors.ADVERSARY_BEHAVIOR).
 ADVERSARY_BEHAVIOR = "AdversaryBehavior"

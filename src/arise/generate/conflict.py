@@ -53,6 +53,17 @@ def conflict_level(spec: ScenarioSpec) -> ConflictLevel:
     return ConflictLevel.CLOSE if close else ConflictLevel.REACH
 
 
+def conflict_met(closest_m: float | None, min_ttc_s: float | None, level: ConflictLevel) -> bool:
+    """Whether a closest gap (0: contact) and a smallest TTC (None: never closing) are what
+    `level` asks for."""
+    if level is ConflictLevel.NONE or closest_m == 0.0:
+        return True
+    ttc = min_ttc_s if min_ttc_s is not None else float("inf")
+    if level is ConflictLevel.CLOSE:
+        return ttc < CLOSE_TTC_S
+    return ttc < REACH_TTC_S or (closest_m is not None and closest_m < REACH_GAP_M)
+
+
 @dataclass(frozen=True)
 class ConflictFacts:
     """The adversary against the ego over the run, from their trajectories."""
@@ -63,12 +74,7 @@ class ConflictFacts:
     contact: bool
 
     def meets(self, level: ConflictLevel) -> bool:
-        if level is ConflictLevel.NONE or self.contact:
-            return True
-        ttc = self.min_ttc_s if self.min_ttc_s is not None else float("inf")
-        if level is ConflictLevel.CLOSE:
-            return ttc < CLOSE_TTC_S
-        return ttc < REACH_TTC_S or (self.closest_m is not None and self.closest_m < REACH_GAP_M)
+        return self.contact or conflict_met(self.closest_m, self.min_ttc_s, level)
 
     def describe(self) -> str:
         if self.contact:
