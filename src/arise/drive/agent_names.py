@@ -6,6 +6,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from arise.agents import check_agent_spec
+from arise.drive.sources import safe_part
 
 
 def resolve_agent(name: str) -> str:
@@ -20,3 +21,9 @@ def agent_label(agent: str) -> str:
         file, _, cls = agent.rpartition(":")
         return f"{Path(file).name}:{cls}"
     return agent
+
+
+def agent_folder_part(agent: str) -> str:
+    """The agent's label as part of a folder name (`agent.py-MyAgent`): a drive's replays
+    and a run's search folder name it the same way."""
+    return safe_part(agent_label(agent).replace(":", "-"), "agent")

@@ -18,7 +18,7 @@ from pathlib import Path
 from typing import Any
 
 from arise.agents import AgentError
-from arise.drive.agent_names import agent_label
+from arise.drive.agent_names import agent_folder_part
 from arise.drive.measure import measure
 from arise.drive.records import DriveRecord, DriveStatus, DriveTask
 from arise.drive.sources import Scenario, safe_part
@@ -78,7 +78,7 @@ def pending(tasks: Sequence[DriveTask], store: DriveStore) -> list[DriveTask]:
 def replay_folder(task: DriveTask) -> str:
     """Where a run's collision replay goes, below the drive's folder."""
     scenario = "-".join(safe_part(part, "x") for part in task.scenario.split("/"))
-    agent = safe_part(agent_label(task.agent).replace(":", "-"), "agent")
+    agent = agent_folder_part(task.agent)
     return f"{COLLISIONS}/{scenario}-{agent}-r{task.run_index}"
 
 

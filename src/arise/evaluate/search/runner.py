@@ -18,8 +18,7 @@ from pathlib import Path
 
 from arise.agents import AgentError
 from arise.agents.types import BuiltinAgent
-from arise.drive.agent_names import agent_label, resolve_agent
-from arise.drive.sources import safe_part
+from arise.drive.agent_names import agent_folder_part, agent_label, resolve_agent
 from arise.evaluate.search.errors import NoFreeParameters, SearchError, StoreMismatch
 from arise.evaluate.search.executor import Executor, TrialJob, TrialRunner, make_runner
 from arise.evaluate.search.expression import Expression
@@ -148,7 +147,7 @@ def search_folder_name(agent: str | None) -> str:
     searches of several agents keep their own critical instance and files."""
     if agent is None:
         return "search"
-    return "search-" + safe_part(agent_label(agent).replace(":", "-"), "agent")
+    return "search-" + agent_folder_part(agent)
 
 
 def resolve_script(target: Path) -> Path:
