@@ -82,6 +82,14 @@ def replay_folder(task: DriveTask) -> str:
     return f"{COLLISIONS}/{scenario}-{agent}-r{task.run_index}"
 
 
+def raise_for_agent(result: CheckResult) -> None:
+    """AgentError when the check failed because the agent itself cannot be made (no such
+    class, an import that fails): every run would fail the same way, so the caller stops at
+    once and saves nothing a fixed agent would find done."""
+    if result.diagnostic is not None and result.diagnostic.error_type == AgentError.__name__:
+        raise AgentError(result.diagnostic.message)
+
+
 def drive_one(task: DriveTask, config: DriveConfig, pool: WorkerPool, out: Path) -> DriveRecord:
     """Check the task's script with the agent; a run that drove gets its metrics, and its
     replay when it collided. Never raises for a bad script; AgentError when the agent
@@ -96,10 +104,7 @@ def drive_one(task: DriveTask, config: DriveConfig, pool: WorkerPool, out: Path)
         map=result.map.name if result.map else None,
     )
     if not result.ok or result.simulation is None:
-        if result.diagnostic is not None and result.diagnostic.error_type == AgentError.__name__:
-            # The agent itself cannot be made (no such class, an import that fails): every
-            # run would fail the same way, and a fixed agent must not find them done.
-            raise AgentError(result.diagnostic.message)
+        raise_for_agent(result)
         record.message = result.diagnostic.one_line() if result.diagnostic else "did not run"
     else:
         timeout_s = options.steps * result.simulation.timestep

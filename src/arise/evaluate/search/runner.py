@@ -16,9 +16,9 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from arise.agents import AgentError
 from arise.agents.types import BuiltinAgent
 from arise.drive.agent_names import agent_folder_part, agent_label, resolve_agent
+from arise.drive.runner import raise_for_agent
 from arise.evaluate.search.errors import NoFreeParameters, SearchError, StoreMismatch
 from arise.evaluate.search.executor import Executor, TrialJob, TrialRunner, make_runner
 from arise.evaluate.search.expression import Expression
@@ -33,7 +33,7 @@ from arise.evaluate.search.objective import (
 from arise.evaluate.search.sampler import ParamSampler, Proposal, SamplerKind
 from arise.evaluate.search.space import FreeParam, ParamValue, find_free_params, fix_params
 from arise.evaluate.search.store import SearchRow, SearchStore, TrialRecord
-from arise.validate import CheckOptions, CheckResult
+from arise.validate import CheckOptions
 from arise.validate.script_info import read_script_info
 
 #: Scenes a trial may try before its values count as failed: a value that makes every
@@ -214,13 +214,6 @@ def _failed_score(objective: Objective, trials: list[TrialRecord]) -> float:
     return TTC_CAP if objective is Objective.MIN_TTC else FAILED_DISTANCE
 
 
-def _raise_for_agent(result: CheckResult) -> None:
-    """An agent that cannot be made (no such class, an import that fails) fails every trial
-    the same way: stop at once, and save nothing a fixed agent would find done."""
-    if result.diagnostic is not None and result.diagnostic.error_type == AgentError.__name__:
-        raise AgentError(result.diagnostic.message)
-
-
 def prepare(config: SearchConfig, store: SearchStore) -> tuple[SearchResult, int]:
     """The search's identity, its free parameters and its batch size (from the database
     when the search is resumed)."""
@@ -311,7 +304,7 @@ def run_search(
                         config.executor, config.workers, options, config.ray_address
                     )
                 for job, check_result, seconds in active.run(jobs):
-                    _raise_for_agent(check_result)
+                    raise_for_agent(check_result)
                     verdict = outcome(
                         check_result,
                         config.objective,
