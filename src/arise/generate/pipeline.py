@@ -332,6 +332,8 @@ class Generator:
         adversary = None if spec.no_adversary else spec.scenic_class
         try:
             params: dict[str, str] = {}
+            # The adversary's scene: the other actors' copies keep their defaults.
+            own = [e for e in run.retrieval.chosen_entries() if e.actor is None]
             tunes = options.mode is not Mode.CHATSCENE and bool(run.retrieval.chosen)
             if tunes and not spec.quantities_stated:
                 run.retrieval.notes.append(
@@ -342,15 +344,12 @@ class Generator:
                 self.provider.label = "adapt"
                 params, notes = tune_params(
                     run.description,
-                    # The other actors' copies keep their defaults: the model tunes the
-                    # adversary's scene.
-                    [e for e in run.retrieval.chosen_entries() if e.actor is None],
+                    own,
                     self.provider,
                     temperature=options.temperature,
                     seed=options.seed,
                 )
                 run.retrieval.notes += notes
-            own = [e for e in run.retrieval.chosen_entries() if e.actor is None]
             timed = timed_params(spec.timing, own)
             if timed:
                 run.retrieval.notes.append(
