@@ -24,7 +24,7 @@ from conflict_reach import box_gap
 
 from arise.drive.metrics_encounters import min_ttc
 from arise.drive.metrics_track import Track
-from arise.evaluate.fidelity import DEVSET_DIR, LabeledDescription, load_devset
+from arise.evaluate.fidelity import LabeledDescription, load_devsets
 from arise.generate.conflict import ConflictLevel, conflict_met
 from arise.generate.conformity import find_adversary
 from arise.validate import CheckOptions, WorkerPool, check
@@ -52,13 +52,6 @@ class Met:
     @property
     def close(self) -> bool:
         return conflict_met(self.gap_m, self.ttc_s, ConflictLevel.CLOSE)
-
-
-def labeled_items() -> dict[str, LabeledDescription]:
-    items: dict[str, LabeledDescription] = {}
-    for path in sorted(DEVSET_DIR.glob("*.jsonl")):
-        items.update({item.id: item for item in load_devset(path)})
-    return items
 
 
 def runs_of(bench_out: Path, items: dict[str, LabeledDescription]) -> list[Run]:
@@ -95,7 +88,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--workers", type=int, default=2)
     args = parser.parse_args(argv)
-    items = labeled_items()
+    items = {item.id: item for items in load_devsets().values() for item in items}
     every: list[Met] = []
     for folder in args.bench_out:
         runs = runs_of(folder, items)
