@@ -115,7 +115,11 @@ def test_grades_order_exact_near_unspecific_contradicts() -> None:
     assert approach_fit(right, None) is Fit.UNSPECIFIC
     assert approach_fit(right, Approach.LEFT) is Fit.CONTRADICTS
     assert approach_fit(right, Approach.OPPOSITE) is Fit.CONTRADICTS
-    assert maneuver_fit(AdversaryManeuver.UNSTATED, AdversaryManeuver.TURN_LEFT) is Fit.EXACT
+    # A turn the text does not mention is the next best: a road user goes straight unless
+    # the text says it turns.
+    assert maneuver_fit(AdversaryManeuver.UNSTATED, AdversaryManeuver.TURN_LEFT) is Fit.NEAR
+    assert maneuver_fit(AdversaryManeuver.UNSTATED, AdversaryManeuver.STRAIGHT) is Fit.EXACT
+    assert maneuver_fit(AdversaryManeuver.UNSTATED, None) is Fit.EXACT
     assert maneuver_fit(AdversaryManeuver.TURN_LEFT, None) is Fit.UNSPECIFIC
     assert maneuver_fit(AdversaryManeuver.TURN_LEFT, AdversaryManeuver.STRAIGHT) is Fit.CONTRADICTS
 

@@ -228,9 +228,12 @@ def approach_fit(position: RelativePosition, approach: Approach | None) -> Fit:
 
 
 def maneuver_fit(wanted: AdversaryManeuver, maneuver: AdversaryManeuver | None) -> Fit:
-    """Grade one adversary maneuver against the spec's (an unstated one fits anything)."""
+    """Grade one adversary maneuver against the spec's. An unstated one fits anything, but a
+    road user whose turn the text does not mention goes straight: a route that turns is the
+    next best."""
     if wanted is AdversaryManeuver.UNSTATED:
-        return Fit.EXACT
+        turns = maneuver in (AdversaryManeuver.TURN_LEFT, AdversaryManeuver.TURN_RIGHT)
+        return Fit.NEAR if turns else Fit.EXACT
     if maneuver is None:
         return Fit.UNSPECIFIC
     return Fit.EXACT if maneuver is wanted else Fit.CONTRADICTS
