@@ -57,6 +57,7 @@ DEV_FILES = (
     "crash_reports.jsonl",
     "styles.jsonl",
     "variants.jsonl",
+    "fresh.jsonl",
 )
 
 

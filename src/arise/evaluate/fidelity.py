@@ -87,6 +87,8 @@ class DevSet(StrEnum):
     STYLES = "styles"
     # many ways of saying where a road user starts and moves (devsets/README.md)
     VARIANTS = "variants"
+    # new text in the held-apart set's styles, written before any run (devsets/README.md)
+    FRESH = "fresh"
     # tests/heldapart: measured only, never tuned on (its README states the rule)
     HELDAPART = "heldapart"
 
@@ -97,6 +99,7 @@ DEVSET_FILES: dict[DevSet, str] = {
     DevSet.CRASH_REPORT: "crash_reports.jsonl",
     DevSet.STYLES: "styles.jsonl",
     DevSet.VARIANTS: "variants.jsonl",
+    DevSet.FRESH: "fresh.jsonl",
 }
 
 
