@@ -35,6 +35,9 @@ def _subject_of(text: str, words: str) -> str | None:
         # "it" opening a clause continues the subject that agrees in number
         ("A cab stops, and it then reverses.", "reverses", "A cab"),
         ("Two joggers cross while it waits at the line.", "waits", "ego"),
+        # a place opening the clause puts the subject after its verb
+        ("The ego waits. Out of the side road is coming a tractor.", "is coming", "a tractor"),
+        ("The ego brakes, then from behind a moped is coming fast.", "fast", "a moped"),
     ],
 )
 def test_each_verb_has_the_subject_of_its_clause(text: str, words: str, subject: str) -> None:
@@ -69,3 +72,13 @@ def test_a_parked_car_and_a_walker_each_keep_their_own_words() -> None:
     assert facts["A van"]["stationary"] == "true"
     assert facts["a man"]["start"] == "crossing_road_from_left"
     assert "stationary" not in facts["a man"]
+
+
+def test_a_subject_after_its_verb_keeps_the_place_before_it() -> None:
+    text = (
+        "Our car is waiting to turn. From right side is coming a lorry, and from the "
+        "left also comes a scooter."
+    )
+    facts = read_facts(text)
+    assert facts["a lorry"]["start"] == "crossing_road_from_right"
+    assert facts["a scooter"]["start"] == "crossing_road_from_left"

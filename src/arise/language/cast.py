@@ -61,7 +61,7 @@ _EGO_DRIVER = re.compile(
     r"\b(?:safety|test|backup|vehicle|av's|ego's|its|my|our)\s+(?:\w+\s+)?$", re.I
 )
 # Numbered parties of a report: "V1", "Vehicle 2", "Veh. 1", "Unit 1"; pedestrians "P1".
-_NUMBERED = re.compile(r"\b(?:V|Veh\.?\s?|Vehicle\s|Unit\s)([1-9])\b(?:'s)?")
+_NUMBERED = re.compile(r"\b(?:V|Veh\.?\s?|Vehicle\s|Unit\s|Party\s)([1-9])\b(?:'s)?")
 _NUMBERED_WALKER = re.compile(r"\bP([1-9])\b(?:'s)?")
 # What says a numbered vehicle is the one under test.
 _AUTONOMOUS = re.compile(
@@ -123,6 +123,9 @@ class Clause:
     opener: str  # the word or mark before it ("" at the start of the text)
     subject: Mention | str | None  # a Mention, "ego", or nobody named
     explicit: bool  # the subject is named in the clause (not carried over)
+    # The subject comes after its verb, a place opening the clause ("from the left is
+    # coming a bus"): the words before it are about it.
+    inverted: bool = False
 
 
 @dataclass(frozen=True)

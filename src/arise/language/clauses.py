@@ -46,6 +46,19 @@ def _spans(cast: Cast) -> list[tuple[Span, Actor]]:
     return sorted(found, key=lambda item: item[0].start)
 
 
+# A verb of motion right after an actor makes it the subject even after a preposition
+# ("from behind one motorbike is coming"), and right before one where a place opens the
+# clause ("from left side is coming a bus").
+_MOTION = r"(?:com(?:e|es|ing)|go(?:es|ing)?|went|appear(?:s|ed|ing)?|approach(?:es|ed|ing)?)"
+_VERB_AFTER = re.compile(
+    rf"\s+(?:(?:is|are|was|were)\s+)?(?:also\s+|suddenly\s+)?{_MOTION}\b", re.I
+)
+_VERB_BEFORE = re.compile(
+    rf"\b(?:(?:is|are|was|were)\s+)?(?:also\s+|suddenly\s+)?{_MOTION}"
+    r"(?:\s+(?:\w+ly|fast|very|quick|quickly|also))*\s*$",
+    re.I,
+)
+
 _PREPOSITION = re.compile(
     r"^(?:of|in|into|to|from|behind|with|by|for|at|on|onto|toward|towards|past|beside|near|"
     r"around|ahead|front|than|between|like|before|after|across|along|alongside|over|under|"
@@ -68,16 +81,47 @@ def _opening_actor(
         phrase = phrase_start(cast.text, span.start)
         between = cast.text[first_word : max(first_word, phrase)]
         if len(between.split()) > 6:
-            return None
+            break
         words = between.split()
-        if words and _PREPOSITION.match(words[-1].strip(",")):
+        if (
+            words
+            and _PREPOSITION.match(words[-1].strip(","))
+            and not _VERB_AFTER.match(cast.text, span.end)
+        ):
             continue  # governed: "in front of the ego", "behind the bus"
         if cast.text[span.start : span.end].lower().endswith("'s") or re.match(
             r"'s\b", cast.text[span.end : span.end + 2]
         ):
             continue  # "the ego's lane"
         return actor
+    return _inverted_subject(cast, spans, first_word, end)
+
+
+def _inverted_subject(
+    cast: Cast, spans: list[tuple[Span, Actor]], start: int, end: int
+) -> Actor | None:
+    """The subject after its verb, where a place opens the clause ("from the left side is
+    coming a bus", "then from the right also comes a cyclist")."""
+    for span, actor in spans:
+        if start <= span.start < end:
+            between = cast.text[start : phrase_start(cast.text, span.start)]
+            if len(between.split()) <= 8 and _VERB_BEFORE.search(between):
+                return actor
     return None
+
+
+def _follows_its_verb(
+    cast: Cast, spans: list[tuple[Span, Actor]], subject: Actor | None, start: int, end: int
+) -> bool:
+    """Whether the clause names its subject after a verb of motion, a place before both."""
+    if not isinstance(subject, Mention):
+        return False
+    for span, actor in spans:
+        if actor is subject and start <= span.start < end:
+            between = cast.text[start : phrase_start(cast.text, span.start)]
+            verb = _VERB_BEFORE.search(between)
+            return verb is not None and bool(between[: verb.start()].strip())
+    return False
 
 
 def _actor_ending_at(spans: list[tuple[Span, Actor]], text: str, position: int) -> Actor | None:
@@ -117,7 +161,10 @@ def read_clauses(cast: Cast) -> list[Clause]:
                 subject = _opening_actor(cast, spans, begin, end)
         else:
             subject = _opening_actor(cast, spans, begin, end)
-        clauses.append(Clause(begin, end, opener, subject, explicit=subject is not None))
+        inverted = _follows_its_verb(cast, spans, subject, begin, end)
+        clauses.append(
+            Clause(begin, end, opener, subject, explicit=subject is not None, inverted=inverted)
+        )
     return _carry_subjects(clauses, text, spans)
 
 

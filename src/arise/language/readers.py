@@ -64,13 +64,23 @@ def words_of(cast: Cast, mention: Mention) -> list[tuple[int, int]]:
     starts = sorted(
         phrase_start(text, s.start) for m in cast.others if not m.cls.is_place for s in m.spans
     )
+    inverted = [c for c in cast.clauses if c.inverted and isinstance(c.subject, Mention)]
     for span in mention.spans:
         lead = _passive_verb_start(text, phrase_start(text, span.start))
         opener = _fronted_participle(cast, lead)
         if opener is not None:
             stretches.append(opener)
-        end = next((s for s in starts if s > span.end), len(text))
+        # A clause whose subject follows its verb opens with words about that subject
+        # ("from the right side also comes a cyclist"): they end this actor's words.
+        starts_after = [s for s in starts if s > span.end]
+        starts_after += [
+            c.start for c in inverted if c.start > span.end and c.subject is not mention
+        ]
+        end = min(starts_after, default=len(text))
         stretches.append((lead, min(end, sentence_end(text, span.end))))
+    for clause in inverted:
+        if clause.subject is mention:
+            stretches.append((clause.start, phrase_start(text, mention.spans[0].start)))
     return stretches
 
 
