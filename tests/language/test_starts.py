@@ -88,3 +88,28 @@ def test_a_numbered_party_that_meets_the_av_is_not_the_av(text: str) -> None:
     reading = read_description(text)
     assert reading.adversary is not None and reading.adversary.quote.startswith(("Unit 2", "V2"))
     assert reading.cast.ego
+
+
+def test_the_adversary_is_the_road_user_that_touches_the_ego() -> None:
+    """Not the bus the ego waited behind, but the car whose own clause runs into it."""
+    from arise.language.readers import read_description
+
+    text = (
+        "We were sitting at the lights behind a coach. A hatchback then ran into the back "
+        "of our car; the coach was not touched."
+    )
+    reading = read_description(text)
+    assert reading.adversary is not None and reading.adversary.quote == "A hatchback"
+    assert reading.facts["spawn_position"].value == "behind_same_lane"
+
+
+def test_a_numbered_party_driving_a_vehicle_is_that_vehicle() -> None:
+    from arise.language.readers import read_description
+
+    text = (
+        "Party 1 (the AV) was stopped at a red signal. Party 2, driving a 2011 Parlow "
+        "estate, collided with the rear of Party 1."
+    )
+    reading = read_description(text)
+    assert len(reading.cast.others) == 1
+    assert reading.facts["spawn_position"].value == "behind_same_lane"

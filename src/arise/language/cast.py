@@ -352,15 +352,23 @@ def _noun_follows(text: str, end: int) -> bool:
     return bool(lexicon().noun_pattern.search(window))
 
 
+# What a numbered party is, said right after it: "V2, a pickup", "V2 (a Toyota pickup)",
+# "Party 2, driving a 2019 sedan", "Unit 2, riding a moped".
+_APPOSITION = re.compile(
+    r"^,?\s*\(?\s*(?:(?:driving|driven|operating|riding|in|on)\s+)?(?:a|an|the)\s+([^,;.()]{1,60})",
+    re.I,
+)
+
+
 def _numbered_descriptions(
     text: str, found: list[Mention], numbered: dict[str, int]
 ) -> list[Mention]:
-    """ "V2, a pickup, ..." or "V2 (a Toyota pickup)": the class the apposition names, and
+    """ "V2, a pickup, ..." or "Party 2, driving a sedan": the class the apposition names, and
     the apposition folded into V2 instead of standing as one more actor."""
     for _kind, index in numbered.items():
         mention = found[index]
         first = mention.spans[0]
-        after = re.match(r"^,?\s*\(?\s*(?:a|an|the)\s+([^,;.()]{1,60})", text[first.end :])
+        after = _APPOSITION.match(text[first.end :])
         if not after:
             continue
         start = first.end + after.start(1)

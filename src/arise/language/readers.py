@@ -723,14 +723,32 @@ def choose_adversary(cast: Cast, quote: str | None) -> Mention | None:
             if named:
                 return named[0]
     road_users = [m for m in cast.others if adversary_type_of(m.cls) is not None]
+    playing: list[tuple[int, Mention]] = []
     for mention in road_users:
         stretches = words_of(cast, mention)
         if any(rulebook().first(Fact.BACKGROUND, cast.text, a, b) for a, b in stretches):
             continue
         if any(cue_before(Fact.HIDES_BEHIND, cast.text, a, spaced=False) for a, _ in stretches):
             continue
-        return mention
+        playing.append((_meeting_rank(cast, mention, stretches), mention))
+    if playing:
+        return min(playing, key=lambda ranked: ranked[0])[1]
     return road_users[0] if road_users else None
+
+
+def _meeting_rank(cast: Cast, mention: Mention, stretches: list[tuple[int, int]]) -> int:
+    """0 for a road user that is the subject of words touching the ego ("the estate car ran
+    into the back of mine"), 1 for one that nearly does, 2 for the rest: the one in the
+    collision is the adversary, not the bus the ego waited behind."""
+    meetings = [
+        hit.value
+        for a, b in stretches
+        if (hit := rulebook().first(Fact.MEETING, cast.text, a, b))
+        and subject_of(cast, hit.start) is mention
+    ]
+    if "contact" in meetings:
+        return 0
+    return 1 if meetings else 2
 
 
 def is_vehicle(cls: str) -> bool:
