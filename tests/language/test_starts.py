@@ -113,3 +113,11 @@ def test_a_numbered_party_driving_a_vehicle_is_that_vehicle() -> None:
     reading = read_description(text)
     assert len(reading.cast.others) == 1
     assert reading.facts["spawn_position"].value == "behind_same_lane"
+
+
+def test_a_person_who_owns_the_vehicle_is_no_road_user_of_their_own() -> None:
+    from arise.language.readers import read_description
+
+    reading = read_description("Van of one man is standing at left side of road and starts.")
+    assert [m.cls.value for m in reading.cast.others] == ["Van"]
+    assert reading.facts["spawn_position"].value == "roadside_left"

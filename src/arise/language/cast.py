@@ -54,6 +54,7 @@ _PLURAL = re.compile(r"(?:s|ren|men|ple|ies)$", re.I)
 # "the other car", "the other driver": the road user named before that is not the ego.
 _THE_OTHER = re.compile(r"\bthe other\s+$", re.I)
 # A driver, rider or operator of something already named is that thing.
+_OWNER = re.compile(r"^\s+of\s+(?:the\s+|a\s+|an\s+)?(?:other\s+|another\s+)?$", re.I)
 _DRIVER = re.compile(r"^(?:driver|drivers|motorist|motorists)$", re.I)
 _DRIVER_OF = re.compile(r"^\s+(?:of|in|driving)\s+(?:a|an|the)\b", re.I)
 # The ego's own driver ("the AV's safety driver", "its driver", "my driver") is no road user.
@@ -294,6 +295,10 @@ def read_cast(text: str) -> Cast:
             continue
         if kind == "noun" and _NOT_NEW_THING.search(before) and not _THE_OTHER.search(before):
             continue
+        if cls is ActorClass.PEDESTRIAN and found and _owner_of(text, found[-1], start):
+            skipped.append(word)
+            taken.append((start, end))
+            continue
         count_match = _COUNT.search(before)
         count = 1
         if count_match:
@@ -319,6 +324,12 @@ def read_cast(text: str) -> Cast:
     found = _numbered_descriptions(text, found, numbered)
     found = _ego_appositions(text, ego, found)
     return Cast(text, tuple(ego), tuple(found), tuple(skipped))
+
+
+def _owner_of(text: str, vehicle: Mention, start: int) -> bool:
+    """ "Car of other person", "the van of a man": the person owns the vehicle just named,
+    no road user of their own."""
+    return vehicle.cls in VEHICLE_CLASSES and bool(_OWNER.match(text[vehicle.end : start]))
 
 
 def _not_an_actor(after: str, words: tuple[str, ...]) -> bool:
