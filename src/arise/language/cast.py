@@ -54,7 +54,7 @@ _PLURAL = re.compile(r"(?:s|ren|men|ple|ies)$", re.I)
 # "the other car", "the other driver": the road user named before that is not the ego.
 _THE_OTHER = re.compile(r"\bthe other\s+$", re.I)
 # A driver, rider or operator of something already named is that thing.
-_OWNER = re.compile(r"^\s+of\s+(?:the\s+|a\s+|an\s+)?(?:other\s+|another\s+)?$", re.I)
+_OWNER = re.compile(r"^\s+of\s+(?:the\s+|a\s+|an\s+|one\s+)?(?:other\s+|another\s+)?$", re.I)
 _DRIVER = re.compile(r"^(?:driver|drivers|motorist|motorists)$", re.I)
 _DRIVER_OF = re.compile(r"^\s+(?:of|in|driving)\s+(?:a|an|the)\b", re.I)
 # The ego's own driver ("the AV's safety driver", "its driver", "my driver") is no road user.
@@ -426,9 +426,12 @@ def _same_thing(
     generic_vehicle = word.lower() in ("vehicle", "vehicles", "driver", "motorist") or (
         word.lower().startswith("car")
     )
+    # "the car" is the car named before it, even with a motorbike named in between; a
+    # generic word ("the vehicle") may mean any vehicle, the latest first.
     for earlier in reversed(found):
         if earlier.cls == cls:
             return earlier
+    for earlier in reversed(found):
         if generic_vehicle and earlier.cls in VEHICLE_CLASSES and cls is ActorClass.CAR:
             return earlier
     return None

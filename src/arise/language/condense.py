@@ -20,7 +20,7 @@ _DATE = re.compile(
 _AFTERMATH = re.compile(
     r"\b(?:damag\w*|dent\w*|scuff\w*|scratch\w*|injur\w*|hospital|ambulance|medical|"
     r"pain|police|cited|citation|patrol|officers?|report (?:was )?(?:made|filed)|"
-    r"(?:took|filed) a report|declined|walked away|tow\w*|airbags?)\b",
+    r"(?:took|filed) a report|declined|walked away|towed|towing|tow truck|airbags?)\b",
     re.I,
 )
 _ACTION = re.compile(
