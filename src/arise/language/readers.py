@@ -422,7 +422,8 @@ def read_compass(cast: Cast, mention: Mention) -> GroundedFact | None:
                 name="spawn_position", value=side.value, source=FactSource.TEXT, quote=curb.quote
             )
         words = cast.text[max(0, start - 15) : end]
-        bound = _heading(cast.text, max(0, start - 15), end)
+        # its own words first, then with the few characters before ("an eastbound sedan")
+        bound = _heading(cast.text, start, end) or _heading(cast.text, max(0, start - 15), end)
         heading = (
             (_COMPASS[bound.value], bound.quote) if bound else _side_road_bearing(cast.text, words)
         )
