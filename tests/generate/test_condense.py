@@ -38,6 +38,6 @@ def test_a_short_description_is_left_as_it_is() -> None:
 
 
 def test_a_sentence_of_someone_coming_towards_the_ego_is_kept() -> None:
-    """"towards" is no tow truck: the sentence tells where a road user comes from."""
+    """ "towards" is no tow truck: the sentence tells where a road user comes from."""
     text = "The ego waits behind a van. A cyclist is heading towards you on the other side."
     assert condense(text).text == text
