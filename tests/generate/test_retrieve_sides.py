@@ -231,6 +231,15 @@ def test_from_the_right_never_offers_the_left_or_an_oncoming_turner(kb, bm25) ->
         assert wrong not in ids["geometry"]
 
 
+def test_a_turn_the_text_does_not_mention_is_not_taken(kb, bm25) -> None:
+    """"A truck from the right enters the junction against the light": it goes straight,
+    and a route that turns is kept out while a straight one composes."""
+    result = retrieve(make_spec(RelativePosition.CROSSING_FROM_RIGHT), kb, bm25, MAPS)
+    spawn = result.chosen[Component.SPAWN][0]
+    for geometry in result.candidates[Component.GEOMETRY]:
+        assert pair_maneuver(geometry, spawn) in (None, AdversaryManeuver.STRAIGHT), geometry.id
+
+
 def test_a_pedestrian_from_the_right_starts_on_the_right_kerb(kb, bm25) -> None:
     spec = make_spec(RelativePosition.CROSSING_FROM_RIGHT, adversary="pedestrian")
     result = retrieve(spec, kb, bm25, MAPS)
