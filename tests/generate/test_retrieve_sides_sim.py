@@ -237,3 +237,36 @@ def test_the_ego_changes_lanes_to_the_stated_side(
         ego_trace = next(a for a in simulation.agents if a.is_ego)
         assert observed_maneuver(ego_trace) is Maneuver(f"lane_change_{side}"), (chosen, seed)
         assert ego_trace.lane_changes == 1, (chosen, seed)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("cls", ["Bicycle", "Pedestrian"])
+def test_a_walker_or_cyclist_from_the_left_at_a_junction_crosses_the_egos_road(
+    kb: KnowledgeBase, maps: dict[str, frozenset[str]], validator_pool: WorkerPool, cls: str
+) -> None:
+    """Its anchor may fall inside the junction, whose direction field points along a
+    crossing lane: the spawn faces it across the ego's road all the same (it rode along the
+    kerb, away from the ego)."""
+    spec = ScenarioSpec(
+        adversary_type="bicycle" if cls == "Bicycle" else "pedestrian",
+        adversary_class=cls,
+        behavior="crosses the road in front of the ego",
+        road_type="intersection",
+        ego_maneuver="go_straight",
+        geometry="a junction",
+        spawn_position=RelativePosition.CROSSING_FROM_LEFT,
+        spawn="from the left",
+    )
+    chosen, runs = simulated(spec, cls, kb, maps, validator_pool)
+    for seed, simulation in runs:
+        agents = simulation.agents
+        ego_trace = next(a for a in agents if a.is_ego)
+        adversary = find_adversary(agents)
+        assert adversary is not None, chosen
+        relation = start_relation(ego_trace, adversary)
+        assert relation is not None, chosen
+        where = (chosen, seed, relation.describe())
+        assert relation.side == "left" and relation.direction == "crossing", where
+        where_placed = placement(ego_trace, adversary)
+        assert where_placed is not None
+        assert where_placed.direction is Direction.CROSSING_LEFT_TO_RIGHT, where
