@@ -307,23 +307,33 @@ def criticality_table(found: Found, agents: list[str], samplers: list[SamplerKin
 
 
 def active_versus_random(found: Found, agents: list[str]) -> str:
-    """The cross-entropy sampler against random, script by script: which found the first
-    failure sooner (a search that found none counts as budget + 1)."""
+    """Each active sampler against random, script by script: which found the first failure
+    sooner (a search that found none counts as budget + 1), the mean trials to the first
+    failure on that count, and the failures found within the budget."""
     lines = []
     for agent in agents:
-        ce = found.get((agent, SamplerKind.CE), [])
         rand = found.get((agent, SamplerKind.RANDOM), [])
-        if not ce or not rand:
-            continue
-        sooner = later = same = 0
-        for (_, a), (_, b) in zip(ce, rand, strict=True):
-            budget = a.config.trials + 1
-            x, y = a.first_critical or budget, b.first_critical or budget
-            sooner, later, same = sooner + (x < y), later + (x > y), same + (x == y)
-        lines.append(
-            f"{agent}: ce found the first failure sooner than random in {sooner} searches, "
-            f"later in {later}, at the same trial in {same} (of {len(ce)})"
-        )
+        for kind in SamplerKind:
+            active = found.get((agent, kind), [])
+            if not kind.active or not active or not rand:
+                continue
+            sooner = later = same = 0
+            counts: tuple[list[int], list[int]] = ([], [])
+            for (_, a), (_, b) in zip(active, rand, strict=True):
+                budget = a.config.trials + 1
+                x, y = a.first_critical or budget, b.first_critical or budget
+                sooner, later, same = sooner + (x < y), later + (x > y), same + (x == y)
+                counts[0].append(x)
+                counts[1].append(y)
+            found_active = sum(a.first_critical is not None for _, a in active)
+            found_random = sum(b.first_critical is not None for _, b in rand)
+            lines.append(
+                f"{agent}: {kind.value} found the first failure sooner than random in "
+                f"{sooner} searches, later in {later}, at the same trial in {same} (of "
+                f"{len(active)}); mean trials to the first (none = budget + 1) "
+                f"{statistics.mean(counts[0]):.1f} against {statistics.mean(counts[1]):.1f}; "
+                f"failures found {found_active} against {found_random}"
+            )
     return "\n".join(lines)
 
 
@@ -448,7 +458,7 @@ def main() -> None:
     if comparison:
         print()
         print(comparison)
-    metric_sampler = SamplerKind.CE if SamplerKind.CE in samplers else samplers[0]
+    metric_sampler = next((s for s in samplers if s.active), samplers[0])
     metrics = metrics_table(found, list(agents), metric_sampler)
     if metrics.count("\n") > 1:
         print(f"\n### driving metrics of the critical instances ({metric_sampler.value})\n")
