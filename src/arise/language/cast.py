@@ -463,8 +463,8 @@ def phrase_start(text: str, start: int) -> int:
     for word in reversed(words):
         if re.search(r"[.;,!?]", before[word.end() :]):
             break  # the phrase does not reach across punctuation
-        if _DETERMINER.match(word.group(0)):
-            return max(0, start - 40) + word.start()
+        if _DETERMINER.match(word.group(0)) and not before[: word.start()].endswith("#"):
+            return max(0, start - 40) + word.start()  # "#2 lane" is a lane's number, no count
     # No article: the modifiers right before the noun ("oncoming moto"), if any.
     opened = start
     modifiers = _bare_modifiers()

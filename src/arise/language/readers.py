@@ -13,6 +13,7 @@ from dataclasses import dataclass, field
 from arise.language.cast import (
     VEHICLE_CLASSES,
     Cast,
+    Clause,
     Mention,
     phrase_start,
     sentence_end,
@@ -56,6 +57,33 @@ class Reading:
     weather: WeatherReading | None = None
 
 
+#: Openers of clauses about the actor just named ("a truck parked on the right, which hides
+#: the car"), whoever their subject was taken to be: they never end its words.
+_ABOUT_THE_ONE_BEFORE = frozenset({"which", "that", "who", "~participle"})
+
+
+def _opens_with_its_subject(cast: Cast, clause: Clause) -> bool:
+    """Whether the clause starts with its subject named ("and the ego wants to overtake"), not
+    with a verb whose object was taken for one ("hides a second car behind it")."""
+    if not clause.explicit:
+        return False
+    if clause.subject == "ego":
+        spans = list(cast.ego)
+    elif isinstance(clause.subject, Mention):
+        spans = list(clause.subject.spans)
+    else:
+        return False
+    first = next((s for s in spans if clause.start <= s.start < clause.end), None)
+    if first is None:
+        return False
+    before = cast.text[clause.start : phrase_start(cast.text, first.start)]
+    return all(word.lower() in _LEAD_WORDS for word in re.findall(r"[\w'-]+", before))
+
+
+#: Words that may stand before a clause's subject ("and then the ego ...").
+_LEAD_WORDS = frozenset({"and", "but", "then", "so", "suddenly", "also", "now", "later"})
+
+
 def words_of(cast: Cast, mention: Mention) -> list[tuple[int, int]]:
     """The stretches of text about `mention`: from a few words before each of its spans to
     the next named actor or the end of the sentence."""
@@ -76,12 +104,34 @@ def words_of(cast: Cast, mention: Mention) -> list[tuple[int, int]]:
         starts_after += [
             c.start for c in inverted if c.start > span.end and c.subject is not mention
         ]
+        # A later clause that names someone else as its subject ("... a slow bus, and the ego
+        # wants to overtake it from the left") is that one's words.
+        starts_after += [
+            c.start
+            for c in cast.clauses
+            if c.start > span.end
+            and c.subject is not mention
+            and c.opener not in _ABOUT_THE_ONE_BEFORE
+            and _opens_with_its_subject(cast, c)
+        ]
         end = min(starts_after, default=len(text))
         stretches.append((lead, min(end, sentence_end(text, span.end))))
     for clause in inverted:
         if clause.subject is mention:
             stretches.append((clause.start, phrase_start(text, mention.spans[0].start)))
+    # "... when we pass, he starts suddenly and goes out": a clause opened by a pronoun that
+    # stands for this actor is about it too.
+    for clause in cast.clauses:
+        if (
+            clause.subject is mention
+            and not clause.explicit
+            and _PRONOUN_OPENS.match(text, clause.start)
+        ):
+            stretches.append((clause.start, clause.end))
     return stretches
+
+
+_PRONOUN_OPENS = re.compile(r"\s*(?:then\s+|suddenly\s+)?(?:it|he|she|they)\b", re.I)
 
 
 # "Merging from the on-ramp on the right, a truck ...", "Just ahead on the right, a bus
@@ -690,7 +740,14 @@ def read_ego_stopped(reading: Reading) -> None:
 def read_stationary(cast: Cast, mention: Mention) -> GroundedFact | None:
     """Whether the words about `mention` say it stays put for the whole scene ("a truck
     parked in its lane", "a stalled car"), and move it nowhere ("a parked car pulls out")."""
-    for start, end in words_of(cast, mention):
+    stretches = words_of(cast, mention)
+    if any(
+        subject_of(cast, hit.start) is mention
+        for start, end in stretches
+        for hit in rulebook().hits(Fact.MOVING, cast.text, start, end)
+    ):
+        return None  # "parked at the side ... he starts suddenly": its own verbs move it
+    for start, end in stretches:
         still = rulebook().first(Fact.STATIONARY, cast.text, start, end)
         if still is not None and not moves(cast.text, start, end):
             return GroundedFact(
