@@ -93,3 +93,14 @@ def test_road_users_are_named_once_with_their_class(
 )
 def test_a_count_is_stated_or_open(text: str, counted: bool) -> None:
     assert read_cast(text).others[0].counted is counted
+
+
+def test_a_road_user_named_in_a_typology_heading_is_the_one_described_after_it() -> None:
+    from arise.language.reading import parse
+
+    cast = parse(
+        "Motorcyclist turning: subject vehicle goes straight; a motorcyclist from the "
+        "opposite direction turns left across its path."
+    )
+    assert len(cast.others) == 1
+    assert cast.others[0].quote == "a motorcyclist"

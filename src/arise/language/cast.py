@@ -322,6 +322,7 @@ def read_cast(text: str) -> Cast:
         if kind.startswith(("V", "P")) and kind != "noun":
             numbered[kind] = len(found) - 1
     found = _numbered_descriptions(text, found, numbered)
+    found = _heading_mentions(text, found)
     found = _ego_appositions(text, ego, found)
     return Cast(text, tuple(ego), tuple(found), tuple(skipped))
 
@@ -395,6 +396,36 @@ def _numbered_descriptions(
         )
         found = [merged if m is mention else m for m in found if m is not named]
         numbered = {k: found.index(merged) if v == index else v for k, v in numbered.items()}
+    return found
+
+
+#: A typology heading before the text ("Lead vehicle stopped: ...", "Pedalcyclist crossing,
+#: non-junction: ..."): a label of the scene, not a sentence.
+_HEADING = re.compile(r"^[^.:;]{3,60}:\s")
+
+
+def _heading_mentions(text: str, found: list[Mention]) -> list[Mention]:
+    """A road user the heading names is the one the text then describes: "Lead vehicle
+    stopped: ... a disabled passenger car stands still" is one car."""
+    heading = _HEADING.match(text)
+    if heading is None:
+        return found
+    for named in [m for m in found if m.start < heading.end() and len(m.spans) == 1]:
+        later = next(
+            (
+                m
+                for m in found
+                if m.start >= heading.end()
+                and (
+                    m.cls == named.cls or (named.cls is ActorClass.CAR and m.cls in VEHICLE_CLASSES)
+                )
+            ),
+            None,
+        )
+        if later is None:
+            continue
+        merged = later.with_span(named.spans[0])
+        found = [merged if m is later else m for m in found if m is not named]
     return found
 
 

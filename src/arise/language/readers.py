@@ -64,9 +64,10 @@ _ABOUT_THE_ONE_BEFORE = frozenset({"which", "that", "who", "~participle"})
 
 def _opens_with_its_subject(cast: Cast, clause: Clause) -> bool:
     """Whether the clause starts with its subject named ("and the ego wants to overtake"), not
-    with a verb whose object was taken for one ("hides a second car behind it")."""
+    with a verb whose object was taken for one ("hides a second car behind it"); or goes on
+    with the subject before ("emerging between two parked cars, and crosses the path")."""
     if not clause.explicit:
-        return False
+        return clause.subject is not None and clause.opener in _GOES_ON
     if clause.subject == "ego":
         spans = list(cast.ego)
     elif isinstance(clause.subject, Mention):
@@ -80,6 +81,8 @@ def _opens_with_its_subject(cast: Cast, clause: Clause) -> bool:
     return all(word.lower() in _LEAD_WORDS for word in re.findall(r"[\w'-]+", before))
 
 
+#: Openers of a clause that goes on with the subject before it.
+_GOES_ON = frozenset({"and", "and then", "then", "but"})
 #: Words that may stand before a clause's subject ("and then the ego ...").
 _LEAD_WORDS = frozenset({"and", "but", "then", "so", "suddenly", "also", "now", "later"})
 
