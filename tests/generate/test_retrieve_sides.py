@@ -232,7 +232,7 @@ def test_from_the_right_never_offers_the_left_or_an_oncoming_turner(kb, bm25) ->
 
 
 def test_a_turn_the_text_does_not_mention_is_not_taken(kb, bm25) -> None:
-    """"A truck from the right enters the junction against the light": it goes straight,
+    """ "A truck from the right enters the junction against the light": it goes straight,
     and a route that turns is kept out while a straight one composes."""
     result = retrieve(make_spec(RelativePosition.CROSSING_FROM_RIGHT), kb, bm25, MAPS)
     spawn = result.chosen[Component.SPAWN][0]
