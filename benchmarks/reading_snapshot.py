@@ -58,6 +58,7 @@ DEV_FILES = (
     "styles.jsonl",
     "variants.jsonl",
     "fresh.jsonl",
+    "fresh2.jsonl",
 )
 
 

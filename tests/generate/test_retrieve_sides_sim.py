@@ -14,6 +14,7 @@ import pytest
 from arise.evaluate.fidelity import Direction, Maneuver, observed_maneuver, placement
 from arise.generate.assemble import assemble
 from arise.generate.conformity import (
+    StartRelation,
     at_junction,
     find_adversary,
     start_relation,
@@ -78,6 +79,19 @@ def adversary_turn(adversary: AgentTrace) -> AdversaryManeuver | None:
     return AdversaryManeuver.STRAIGHT
 
 
+def ego_and_adversary(
+    simulation: SimulationFacts, chosen: list[str]
+) -> tuple[AgentTrace, AgentTrace, StartRelation]:
+    """The ego, the adversary and where the adversary started seen from the ego (each must
+    be in the trace)."""
+    ego_trace = next(a for a in simulation.agents if a.is_ego)
+    adversary = find_adversary(simulation.agents)
+    assert adversary is not None, chosen
+    relation = start_relation(ego_trace, adversary)
+    assert relation is not None, chosen
+    return ego_trace, adversary, relation
+
+
 def simulated(
     spec: ScenarioSpec,
     cls: str | None,
@@ -122,12 +136,7 @@ def test_the_adversary_starts_on_the_stated_side_and_goes_the_stated_way(
     chosen, runs = simulated(spec, "Car", kb, maps, validator_pool)
     side, direction = WANTED_SIDE[position]
     for seed, simulation in runs:
-        agents = simulation.agents
-        ego_trace = next(a for a in agents if a.is_ego)
-        adversary = find_adversary(agents)
-        assert adversary is not None, chosen
-        relation = start_relation(ego_trace, adversary)
-        assert relation is not None, chosen
+        _, adversary, relation = ego_and_adversary(simulation, chosen)
         where = (chosen, seed, relation.describe())
         assert relation.direction == direction, where
         if side is not None:
@@ -259,12 +268,7 @@ def test_a_walker_or_cyclist_from_the_left_at_a_junction_crosses_the_egos_road(
     )
     chosen, runs = simulated(spec, cls, kb, maps, validator_pool)
     for seed, simulation in runs:
-        agents = simulation.agents
-        ego_trace = next(a for a in agents if a.is_ego)
-        adversary = find_adversary(agents)
-        assert adversary is not None, chosen
-        relation = start_relation(ego_trace, adversary)
-        assert relation is not None, chosen
+        ego_trace, adversary, relation = ego_and_adversary(simulation, chosen)
         where = (chosen, seed, relation.describe())
         assert relation.side == "left" and relation.direction == "crossing", where
         where_placed = placement(ego_trace, adversary)

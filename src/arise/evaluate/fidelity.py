@@ -89,6 +89,8 @@ class DevSet(StrEnum):
     VARIANTS = "variants"
     # new text in the held-apart set's styles, written before any run (devsets/README.md)
     FRESH = "fresh"
+    # a second probe of the same kind, kept unread until a session scores it first
+    FRESH2 = "fresh2"
     # tests/heldapart: measured only, never tuned on (its README states the rule)
     HELDAPART = "heldapart"
 
@@ -100,6 +102,7 @@ DEVSET_FILES: dict[DevSet, str] = {
     DevSet.STYLES: "styles.jsonl",
     DevSet.VARIANTS: "variants.jsonl",
     DevSet.FRESH: "fresh.jsonl",
+    DevSet.FRESH2: "fresh2.jsonl",
 }
 
 

@@ -53,8 +53,9 @@ _GROUP = re.compile(
 _PLURAL = re.compile(r"(?:s|ren|men|ple|ies)$", re.I)
 # "the other car", "the other driver": the road user named before that is not the ego.
 _THE_OTHER = re.compile(r"\bthe other\s+$", re.I)
-# A driver, rider or operator of something already named is that thing.
+# The person a vehicle belongs to ("car of other person"): between the two words.
 _OWNER = re.compile(r"^\s+of\s+(?:the\s+|a\s+|an\s+|one\s+)?(?:other\s+|another\s+)?$", re.I)
+# A driver, rider or operator of something already named is that thing.
 _DRIVER = re.compile(r"^(?:driver|drivers|motorist|motorists)$", re.I)
 _DRIVER_OF = re.compile(r"^\s+(?:of|in|driving)\s+(?:a|an|the)\b", re.I)
 # The ego's own driver ("the AV's safety driver", "its driver", "my driver") is no road user.

@@ -105,9 +105,15 @@ def _inverted_subject(
     for span, actor in spans:
         if start <= span.start < end:
             between = cast.text[start : phrase_start(cast.text, span.start)]
-            if len(between.split()) <= 8 and _VERB_BEFORE.search(between):
+            if len(between.split()) <= 8 and _motion_verb_before(cast, start, span):
                 return actor
     return None
+
+
+def _motion_verb_before(cast: Cast, start: int, span: Span) -> re.Match[str] | None:
+    """The verb of motion that ends the words from `start` to the phrase of `span` ("from
+    the left side is coming | a bus"), if any."""
+    return _VERB_BEFORE.search(cast.text[start : phrase_start(cast.text, span.start)])
 
 
 def _follows_its_verb(
@@ -118,9 +124,8 @@ def _follows_its_verb(
         return False
     for span, actor in spans:
         if actor is subject and start <= span.start < end:
-            between = cast.text[start : phrase_start(cast.text, span.start)]
-            verb = _VERB_BEFORE.search(between)
-            return verb is not None and bool(between[: verb.start()].strip())
+            verb = _motion_verb_before(cast, start, span)
+            return verb is not None and bool(cast.text[start : start + verb.start()].strip())
     return False
 
 

@@ -770,9 +770,10 @@ def adversary_type_of(cls: ActorClass) -> AdversaryType | None:
 
 
 def choose_adversary(cast: Cast, quote: str | None) -> Mention | None:
-    """The named road user the model points at (by a quote that is in the text); else the
-    first road user not described as parked or hiding something, nor one someone comes out
-    from behind ("walks out from in front of the bus"); else the first one."""
+    """The named road user the model points at (by a quote that is in the text); else, of
+    the road users not described as parked or hiding something, nor one someone comes out
+    from behind ("walks out from in front of the bus"), the first whose own clause touches
+    the ego, else the first that nearly does, else the first; else the first one."""
     if quote:
         span = find_quote(cast.text, quote)
         if span is not None:
