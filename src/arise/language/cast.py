@@ -405,6 +405,13 @@ def _numbered_descriptions(
 _HEADING = re.compile(r"^[^.:;]{3,60}:\s")
 
 
+def heading_end(text: str) -> int:
+    """Where a typology heading ("Stationary-lead class: ...") ends, 0 without one: it names
+    the kind of crash, not what this ego does."""
+    heading = _HEADING.match(text)
+    return heading.end() if heading else 0
+
+
 def _heading_mentions(text: str, found: list[Mention]) -> list[Mention]:
     """A road user the heading names is the one the text then describes: "Lead vehicle
     stopped: ... a disabled passenger car stands still" is one car."""

@@ -15,6 +15,7 @@ from arise.language.cast import (
     Cast,
     Clause,
     Mention,
+    heading_end,
     phrase_start,
     sentence_end,
 )
@@ -218,6 +219,23 @@ def _ego_verb_before(cast: Cast, mention: Mention, cue: Fact) -> GroundedFact | 
 
 
 _ADJACENT = (RelativePosition.ADJACENT_LANE_LEFT, RelativePosition.ADJACENT_LANE_RIGHT)
+_ALONG = (RelativePosition.AHEAD_SAME_LANE, RelativePosition.BEHIND_SAME_LANE)
+#: A start of a side, by the side said.
+_SIDED = {
+    pair[side]: pair
+    for pair in (
+        {"left": RelativePosition.ROADSIDE_LEFT, "right": RelativePosition.ROADSIDE_RIGHT},
+        {
+            "left": RelativePosition.ADJACENT_LANE_LEFT,
+            "right": RelativePosition.ADJACENT_LANE_RIGHT,
+        },
+        {
+            "left": RelativePosition.CROSSING_FROM_LEFT,
+            "right": RelativePosition.CROSSING_FROM_RIGHT,
+        },
+    )
+    for side in ("left", "right")
+}
 
 
 def _lane_number(cast: Cast, stretches: list[tuple[int, int]]) -> Hit | None:
@@ -271,8 +289,25 @@ _RIGHT = frozenset(
         RelativePosition.CROSSING_FROM_RIGHT,
     }
 )
-#: "out from in front of it": the pronoun is the actor named last before it.
-_PRONOUN = re.compile(r"\s*(?:it|them)\b", re.I)
+#: "out from in front of it", "close behind him": the pronoun is the one named last before it.
+_PRONOUN = re.compile(r"\s*(?:it|them|him|her)\b", re.I)
+#: A cue that ends in a third-person pronoun ("behind it"): whom it means decides whose
+#: start the cue tells.
+_ENDS_IN_PRONOUN = re.compile(r"\b(?:it|them|him|her)$", re.I)
+
+
+def _pronoun_means_another(cast: Cast, mention: Mention, hit: Hit) -> bool:
+    """Whether the pronoun ending a cue ("two cones behind it") stands for another road user
+    or the actor itself rather than the ego: the one named last before it, the ego when the
+    ego was named after every other road user."""
+    if not _ENDS_IN_PRONOUN.search(hit.quote):
+        return False
+    ego_last = max((s.end for s in cast.ego if s.end <= hit.start), default=-1)
+    other_last = max(
+        (s.end for m in cast.others if not m.cls.is_place for s in m.spans if s.end <= hit.start),
+        default=-1,
+    )
+    return other_last > ego_last
 
 
 def _named_after(cast: Cast, mention: Mention, at: int) -> Mention | None:
@@ -321,12 +356,8 @@ def _by_another(cast: Cast, mention: Mention) -> GroundedFact | None:
                     if theirs in _LEFT
                     else RelativePosition.CROSSING_FROM_RIGHT
                 )
-            elif (
-                hit.value == "behind"
-                and not walker
-                and (theirs in _ADJACENT or theirs is RelativePosition.ONCOMING)
-            ):
-                position = theirs
+            elif hit.value in ("behind", "ahead") and not walker:
+                position = theirs  # behind a car ahead is ahead, behind an oncoming one oncoming
             if position is not None:
                 return GroundedFact(
                     name="spawn_position",
@@ -348,29 +379,41 @@ def read_position(cast: Cast, mention: Mention, *, by_another: bool = True) -> G
     if told is not None:
         return told
     best: tuple[int, int, RelativePosition, str] | None = None
+    fallback: tuple[int, int, RelativePosition, str] | None = None  # from a weak rule
     for start, end in words_of(cast, mention):
         # A rule's `unless` may see a little past the stretch ("from behind | a parked
         # van"); the cue itself must lie inside it. The first hit of each position counts.
         cues: list[tuple[int, int, RelativePosition, str]] = []
-        seen_values: set[str] = set()
+        weak: list[tuple[int, int, RelativePosition, str]] = []
+        seen_values: set[tuple[str, bool]] = set()
         for hit in rulebook().hits(Fact.START, cast.text, start, end + 40):
-            if hit.value in seen_values:
+            if (hit.value, hit.rule.weak) in seen_values:
                 continue
             if hit.rule.about is Target.SUBJECT and subject_of(cast, hit.start) is not mention:
                 continue  # the words tell what the clause's subject does, and it is another
-            seen_values.add(hit.value)
+            if _pronoun_means_another(cast, mention, hit):
+                continue  # "behind it" of a car named before: placed by that car
+            seen_values.add((hit.value, hit.rule.weak))
             if hit.end <= end:
-                cues.append((hit.start, hit.order, RelativePosition(hit.value), hit.quote))
+                cue = (hit.start, hit.order, RelativePosition(hit.value), hit.quote)
+                (weak if hit.rule.weak else cues).append(cue)
         beside = [c for c in cues if c[2] in _ADJACENT]
-        if beside and any(c[2] is RelativePosition.BEHIND_SAME_LANE for c in cues):
-            # "comes from behind in the left lane": behind, but in the lane beside the ego.
+        if beside and any(c[2] in _ALONG for c in cues):
+            # "comes from behind in the left lane", "just ahead of me in the right-hand
+            # lane": behind or ahead, but in the lane beside the ego.
             cues = beside
         for cue in cues:
             if best is None or cue[:2] < best[:2]:
                 best = cue
         # "on the right"/"on its left" alone: a lane for a vehicle, the roadside for a walker.
         bare = rulebook().first(Fact.BARE_SIDE, cast.text, start, end)
-        if bare and best is None:
+        if weak and fallback is None:
+            fallback = min(weak, key=lambda cue: cue[:2])
+            if bare and fallback[2] in _SIDED:
+                # "at the kerb ... on my left": the side said wins over the near kerb.
+                side = _SIDED[fallback[2]][bare.value]
+                fallback = (fallback[0], fallback[1], side, f"{fallback[3]} ... {bare.quote}")
+        if bare and best is None and fallback is None:
             side = bare.value
             walker = mention.cls.is_walker or mention.is_prop
             position = (
@@ -404,6 +447,7 @@ def read_position(cast: Cast, mention: Mention, *, by_another: bool = True) -> G
                 else RelativePosition.ADJACENT_LANE_RIGHT
             )
             best = (target.start, -1, position, f"{lane_side.quote} ... {target.quote}")
+    best = best or fallback
     if best is None:
         return (
             (_by_another(cast, mention) or _ego_verb_before(cast, mention, Fact.EGO_PASSES))
@@ -571,7 +615,11 @@ def read_maneuvers(reading: Reading) -> None:
     found: list[tuple[int, str, str]] = []
     for hit in rulebook().hits(Fact.TURN, cast.text):
         found.append((hit.start, hit.value, hit.quote))
-    for position, kind, words in sorted(found):
+    # A typology heading ("Left-turn-across-path family: ...") names the crash, maybe by the
+    # other's move: the body's words come first, the heading's only when the body says none.
+    heading = heading_end(cast.text)
+    found.sort(key=lambda item: (item[0] < heading, item[0]))
+    for position, kind, words in found:
         subject = subject_of(cast, position)
         if subject is None and re.match(r"unprotected", words, re.I):
             subject = "ego"

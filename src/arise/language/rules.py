@@ -121,6 +121,9 @@ class Rule(BaseModel):
     about: Target
     when: list[str] = Field(min_length=1)
     unless: list[str] = Field(default_factory=list)
+    #: The value fills in what the words leave open (a kerb with no side is the right one):
+    #: another cue of the same fact in the actor's words wins over it.
+    weak: bool = False
     examples: list[Example] = Field(min_length=1)
 
 
@@ -248,7 +251,7 @@ def _values(fact: Fact) -> frozenset[str] | None:
         Fact.QUANTITY: frozenset({"speed", "distance", "timing"}),
         Fact.MEETING: frozenset({"contact", "near_miss"}),
         Fact.TIMING: frozenset(Timing),
-        Fact.BY_ANOTHER: frozenset({"emerges", "behind"}),
+        Fact.BY_ANOTHER: frozenset({"emerges", "behind", "ahead"}),
         **{
             fact: frozenset({"true"})
             for fact in (
