@@ -383,6 +383,8 @@ def read_position(cast: Cast, mention: Mention, *, by_another: bool = True) -> G
     for start, end in words_of(cast, mention):
         # A rule's `unless` may see a little past the stretch ("from behind | a parked
         # van"); the cue itself must lie inside it. The first hit of each position counts.
+        # "on the right"/"on its left" alone: a lane for a vehicle, the roadside for a walker.
+        bare = rulebook().first(Fact.BARE_SIDE, cast.text, start, end)
         cues: list[tuple[int, int, RelativePosition, str]] = []
         weak: list[tuple[int, int, RelativePosition, str]] = []
         seen_values: set[tuple[str, bool]] = set()
@@ -396,23 +398,21 @@ def read_position(cast: Cast, mention: Mention, *, by_another: bool = True) -> G
             seen_values.add((hit.value, hit.rule.weak))
             if hit.end <= end:
                 cue = (hit.start, hit.order, RelativePosition(hit.value), hit.quote)
+                if hit.rule.side_assumed and bare and cue[2] in _SIDED:
+                    # "at the kerb ... on my left": the side said wins over the usual one.
+                    side = _SIDED[cue[2]][bare.value]
+                    cue = (cue[0], cue[1], side, f"{cue[3]} ... {bare.quote}")
                 (weak if hit.rule.weak else cues).append(cue)
-        beside = [c for c in cues if c[2] in _ADJACENT]
-        if beside and any(c[2] in _ALONG for c in cues):
+        sided = [c for c in cues if c[2] in _SIDED]
+        if sided and any(c[2] in _ALONG for c in cues):
             # "comes from behind in the left lane", "just ahead of me in the right-hand
-            # lane": behind or ahead, but in the lane beside the ego.
-            cues = beside
+            # lane", "behind me, coming from my right": the side tells more than the end.
+            cues = sided
         for cue in cues:
             if best is None or cue[:2] < best[:2]:
                 best = cue
-        # "on the right"/"on its left" alone: a lane for a vehicle, the roadside for a walker.
-        bare = rulebook().first(Fact.BARE_SIDE, cast.text, start, end)
         if weak and fallback is None:
             fallback = min(weak, key=lambda cue: cue[:2])
-            if bare and fallback[2] in _SIDED:
-                # "at the kerb ... on my left": the side said wins over the near kerb.
-                side = _SIDED[fallback[2]][bare.value]
-                fallback = (fallback[0], fallback[1], side, f"{fallback[3]} ... {bare.quote}")
         if bare and best is None and fallback is None:
             side = bare.value
             walker = mention.cls.is_walker or mention.is_prop
