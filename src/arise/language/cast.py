@@ -378,8 +378,7 @@ def _numbered_descriptions(
 ) -> list[Mention]:
     """ "V2, a pickup, ..." or "Party 2, driving a sedan": the class the apposition names, and
     the apposition folded into V2 instead of standing as one more actor."""
-    for _kind, index in numbered.items():
-        mention = found[index]
+    for mention in [found[index] for index in numbered.values()]:
         first = mention.spans[0]
         after = _APPOSITION.match(text[first.end :])
         if not after:
@@ -396,7 +395,6 @@ def _numbered_descriptions(
             spans=tuple(sorted({*mention.spans, *named.spans}, key=lambda s: s.start)),
         )
         found = [merged if m is mention else m for m in found if m is not named]
-        numbered = {k: found.index(merged) if v == index else v for k, v in numbered.items()}
     return found
 
 
