@@ -413,7 +413,7 @@ def read_position(cast: Cast, mention: Mention, *, by_another: bool = True) -> G
                 best = cue
         if weak and fallback is None:
             fallback = min(weak, key=lambda cue: cue[:2])
-        if bare and best is None and fallback is None:
+        if bare and best is None:
             side = bare.value
             walker = mention.cls.is_walker or mention.is_prop
             position = (
