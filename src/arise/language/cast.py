@@ -62,6 +62,15 @@ _DRIVER_OF = re.compile(r"^\s+(?:of|in|driving)\s+(?:a|an|the)\b", re.I)
 _EGO_DRIVER = re.compile(
     r"\b(?:safety|test|backup|vehicle|av's|ego's|its|my|our)\s+(?:\w+\s+)?$", re.I
 )
+# The vehicle the writer drives ("I am drive the car", "we were driving a hire van") is the ego.
+_EGO_DRIVES = re.compile(
+    r"\b(?:i|we)\s+(?:am\s+|was\s+|were\s+|'m\s+)?(?:drive|drives|driving|drove)\s+"
+    r"(?:the|a|an|my|our)\s+(?:[\w'-]+\s+){0,2}$",
+    re.I,
+)
+# A person on a bike is its rider, one road user with the bike: "a man on a pushbike".
+_RIDING = re.compile(r"^\s+(?:on|riding)\s+(?:a|an|his|her|their|the)\s+(?:[\w'-]+\s+){0,2}$", re.I)
+_RIDDEN = (ActorClass.BICYCLE, ActorClass.MOTORCYCLE)
 # Numbered parties of a report: "V1", "Vehicle 2", "Veh. 1", "Unit 1"; pedestrians "P1".
 _NUMBERED = re.compile(r"\b(?:V|Veh\.?\s?|Vehicle\s|Unit\s|Party\s)([1-9])\b(?:'s)?")
 _NUMBERED_WALKER = re.compile(r"\bP([1-9])\b(?:'s)?")
@@ -272,8 +281,18 @@ def read_cast(text: str) -> Cast:
     # A noun right before another one modifies it ("a flatbed truck", "a taxi cab"): the
     # phrase is one thing, named by its head, the last noun.
     noun_starts = {start for start, _, _, kind in candidates if kind == "noun"}
-    for start, end, cls, kind in candidates:
+    for at, (start, end, cls, kind) in enumerate(candidates):
         if _overlaps(taken, start, end):
+            continue
+        ridden = next((c for c in candidates[at + 1 :] if c[0] >= end), None)
+        if (
+            cls is ActorClass.PEDESTRIAN
+            and ridden is not None
+            and ridden[2] in _RIDDEN
+            and _RIDING.match(text[end : ridden[0]])
+        ):
+            skipped.append(text[start:end])  # the rider: the bike that follows is the actor
+            taken.append((start, end))
             continue
         following = re.match(r"[ -]+", text[end:])
         if kind == "noun" and following and end + following.end() in noun_starts:
@@ -286,6 +305,10 @@ def read_cast(text: str) -> Cast:
         if kind.startswith(("V", "P")) and kind != "noun" and kind in numbered:
             index = numbered[kind]
             found[index] = found[index].with_span(Span(start, end))
+            taken.append((start, end))
+            continue
+        if kind in ("noun", "make") and cls in VEHICLE_CLASSES and _EGO_DRIVES.search(before):
+            skipped.append(word)
             taken.append((start, end))
             continue
         if kind == "make" and _noun_follows(text, end):
