@@ -274,3 +274,31 @@ def test_a_walker_or_cyclist_from_the_left_at_a_junction_crosses_the_egos_road(
         where_placed = placement(ego_trace, adversary)
         assert where_placed is not None
         assert where_placed.direction is Direction.CROSSING_LEFT_TO_RIGHT, where
+
+
+@pytest.mark.slow
+def test_a_car_parked_on_the_left_stands_at_the_left_kerb(
+    kb: KnowledgeBase, maps: dict[str, frozenset[str]], validator_pool: WorkerPool
+) -> None:
+    spec = ScenarioSpec(
+        adversary_type="car",
+        adversary_class="Car",
+        behavior="stands parked at the kerb",
+        road_type="straight_road",
+        ego_maneuver="go_straight",
+        geometry="a two-way street",
+        spawn_position=RelativePosition.ROADSIDE_LEFT,
+        spawn="parked on the left",
+        adversary_stationary=True,
+    )
+    chosen, runs = simulated(spec, "Car", kb, maps, validator_pool)
+    assert "spawn.parked_left_curb_ahead" in chosen
+    for seed, simulation in runs:
+        agents = simulation.agents
+        ego_trace = next(a for a in agents if a.is_ego)
+        adversary = find_adversary(agents)
+        assert adversary is not None, chosen
+        relation = start_relation(ego_trace, adversary)
+        assert relation is not None, chosen
+        assert relation.side == "left" and relation.ahead > 0, (chosen, seed, relation.describe())
+        assert travel_heading(adversary) is None, (chosen, seed, "it moved")

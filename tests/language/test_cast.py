@@ -93,3 +93,43 @@ def test_road_users_are_named_once_with_their_class(
 )
 def test_a_count_is_stated_or_open(text: str, counted: bool) -> None:
     assert read_cast(text).others[0].counted is counted
+
+
+def test_a_road_user_named_in_a_typology_heading_is_the_one_described_after_it() -> None:
+    from arise.language.reading import parse
+
+    cast = parse(
+        "Motorcyclist turning: subject vehicle goes straight; a motorcyclist from the "
+        "opposite direction turns left across its path."
+    )
+    assert len(cast.others) == 1
+    assert cast.others[0].quote == "a motorcyclist"
+
+
+@pytest.mark.parametrize(
+    ("text", "named"),
+    [
+        # a rider and the bike are one road user, the bike
+        ("A lad on a mountain bike shot across the zebra in front of us.", [("Bicycle", 1)]),
+        ("A woman riding a moped filters past the queue.", [("Motorcycle", 1)]),
+        # the car the writer drives is the ego's, not another road user
+        ("I am drive the car to work and a dog runs out.", []),
+        ("We were driving a hire van when a tractor pulled out.", [("Truck", 1)]),
+        # the host is the ego in a crash typology
+        ("The host car brakes for a van halted ahead.", [("Van", 1)]),
+    ],
+)
+def test_riders_and_the_ego_own_vehicle_are_no_extra_actors(
+    text: str, named: list[tuple[str, int]]
+) -> None:
+    assert _named(text) == named
+
+
+def test_every_numbered_party_takes_its_apposition() -> None:
+    # two parties each with an apposition: merging the first must not lose the second
+    text = (
+        "V1, the AV, was eastbound. V2, a 2015 Ardel Wren hatchback, turned left across it. "
+        "V3, a flatbed, waited at the limit line."
+    )
+    cast = parse(text)
+    assert [(m.quote, m.cls.value) for m in cast.others] == [("V2", "Car"), ("V3", "Truck")]

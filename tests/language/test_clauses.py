@@ -82,3 +82,22 @@ def test_a_subject_after_its_verb_keeps_the_place_before_it() -> None:
     facts = read_facts(text)
     assert facts["a lorry"]["start"] == "crossing_road_from_right"
     assert facts["a scooter"]["start"] == "crossing_road_from_left"
+
+
+def test_a_clause_that_names_another_subject_ends_an_actors_words() -> None:
+    """ "from the left" is the ego's here, not the lorry's."""
+    text = "Ahead of us goes a slow lorry, and the ego wants to pass it from the left side."
+    facts = read_facts(text)
+    assert facts["a slow lorry"].get("start") != "crossing_road_from_left"
+
+
+def test_he_after_we_is_the_other_driver() -> None:
+    text = (
+        "A van is parked at left side of road, and when we come near, he starts suddenly "
+        "and goes out into our lane."
+    )
+    cast = parse(text)
+    assert cast.subject_at(text.index("starts suddenly")) is cast.others[0]
+    assert cast.subject_at(text.index("goes out")) is cast.others[0]
+    facts = read_facts(text)
+    assert "stationary" not in facts["A van"]

@@ -5,6 +5,7 @@ from __future__ import annotations
 import pytest
 
 from arise.language.errors import RuleError
+from arise.language.lexicon import lexicon
 from arise.language.patterns import compile_pattern
 
 CLASSES = {"side": ("left", "right"), "ego": ("ego", "ego vehicle", "av")}
@@ -57,3 +58,10 @@ def test_a_slot_gives_the_word_it_matched() -> None:
 def test_a_malformed_pattern_is_a_rule_error(pattern: str) -> None:
     with pytest.raises(RuleError):
         compile_pattern(pattern, CLASSES)
+
+
+def test_a_plain_the_before_a_possessive_is_refused() -> None:
+    # alternatives are single words: "the ego's|its lane" would need "the its lane"
+    with pytest.raises(RuleError, match="the\\?"):
+        compile_pattern("into the ego's|its lane", lexicon().classes)
+    assert compile_pattern("into the? ego's|its lane", lexicon().classes).search("into its lane")

@@ -62,6 +62,15 @@ _DRIVER_OF = re.compile(r"^\s+(?:of|in|driving)\s+(?:a|an|the)\b", re.I)
 _EGO_DRIVER = re.compile(
     r"\b(?:safety|test|backup|vehicle|av's|ego's|its|my|our)\s+(?:\w+\s+)?$", re.I
 )
+# The vehicle the writer drives ("I am drive the car", "we were driving a hire van") is the ego.
+_EGO_DRIVES = re.compile(
+    r"\b(?:i|we)\s+(?:am\s+|was\s+|were\s+|'m\s+)?(?:drive|drives|driving|drove)\s+"
+    r"(?:the|a|an|my|our)\s+(?:[\w'-]+\s+){0,2}$",
+    re.I,
+)
+# A person on a bike is its rider, one road user with the bike: "a man on a pushbike".
+_RIDING = re.compile(r"^\s+(?:on|riding)\s+(?:a|an|his|her|their|the)\s+(?:[\w'-]+\s+){0,2}$", re.I)
+_RIDDEN = (ActorClass.BICYCLE, ActorClass.MOTORCYCLE)
 # Numbered parties of a report: "V1", "Vehicle 2", "Veh. 1", "Unit 1"; pedestrians "P1".
 _NUMBERED = re.compile(r"\b(?:V|Veh\.?\s?|Vehicle\s|Unit\s|Party\s)([1-9])\b(?:'s)?")
 _NUMBERED_WALKER = re.compile(r"\bP([1-9])\b(?:'s)?")
@@ -272,8 +281,18 @@ def read_cast(text: str) -> Cast:
     # A noun right before another one modifies it ("a flatbed truck", "a taxi cab"): the
     # phrase is one thing, named by its head, the last noun.
     noun_starts = {start for start, _, _, kind in candidates if kind == "noun"}
-    for start, end, cls, kind in candidates:
+    for at, (start, end, cls, kind) in enumerate(candidates):
         if _overlaps(taken, start, end):
+            continue
+        ridden = next((c for c in candidates[at + 1 :] if c[0] >= end), None)
+        if (
+            cls is ActorClass.PEDESTRIAN
+            and ridden is not None
+            and ridden[2] in _RIDDEN
+            and _RIDING.match(text[end : ridden[0]])
+        ):
+            skipped.append(text[start:end])  # the rider: the bike that follows is the actor
+            taken.append((start, end))
             continue
         following = re.match(r"[ -]+", text[end:])
         if kind == "noun" and following and end + following.end() in noun_starts:
@@ -286,6 +305,10 @@ def read_cast(text: str) -> Cast:
         if kind.startswith(("V", "P")) and kind != "noun" and kind in numbered:
             index = numbered[kind]
             found[index] = found[index].with_span(Span(start, end))
+            taken.append((start, end))
+            continue
+        if kind in ("noun", "make") and cls in VEHICLE_CLASSES and _EGO_DRIVES.search(before):
+            skipped.append(word)
             taken.append((start, end))
             continue
         if kind == "make" and _noun_follows(text, end):
@@ -323,6 +346,7 @@ def read_cast(text: str) -> Cast:
         if kind.startswith(("V", "P")) and kind != "noun":
             numbered[kind] = len(found) - 1
     found = _numbered_descriptions(text, found, numbered)
+    found = _heading_mentions(text, found)
     found = _ego_appositions(text, ego, found)
     return Cast(text, tuple(ego), tuple(found), tuple(skipped))
 
@@ -377,8 +401,7 @@ def _numbered_descriptions(
 ) -> list[Mention]:
     """ "V2, a pickup, ..." or "Party 2, driving a sedan": the class the apposition names, and
     the apposition folded into V2 instead of standing as one more actor."""
-    for _kind, index in numbered.items():
-        mention = found[index]
+    for mention in [found[index] for index in numbered.values()]:
         first = mention.spans[0]
         after = _APPOSITION.match(text[first.end :])
         if not after:
@@ -395,7 +418,43 @@ def _numbered_descriptions(
             spans=tuple(sorted({*mention.spans, *named.spans}, key=lambda s: s.start)),
         )
         found = [merged if m is mention else m for m in found if m is not named]
-        numbered = {k: found.index(merged) if v == index else v for k, v in numbered.items()}
+    return found
+
+
+#: A typology heading before the text ("Lead vehicle stopped: ...", "Pedalcyclist crossing,
+#: non-junction: ..."): a label of the scene, not a sentence.
+_HEADING = re.compile(r"^[^.:;]{3,60}:\s")
+
+
+def heading_end(text: str) -> int:
+    """Where a typology heading ("Stationary-lead class: ...") ends, 0 without one: it names
+    the kind of crash, not what this ego does."""
+    heading = _HEADING.match(text)
+    return heading.end() if heading else 0
+
+
+def _heading_mentions(text: str, found: list[Mention]) -> list[Mention]:
+    """A road user the heading names is the one the text then describes: "Lead vehicle
+    stopped: ... a disabled passenger car stands still" is one car."""
+    heading = _HEADING.match(text)
+    if heading is None:
+        return found
+    for named in [m for m in found if m.start < heading.end() and len(m.spans) == 1]:
+        later = next(
+            (
+                m
+                for m in found
+                if m.start >= heading.end()
+                and (
+                    m.cls == named.cls or (named.cls is ActorClass.CAR and m.cls in VEHICLE_CLASSES)
+                )
+            ),
+            None,
+        )
+        if later is None:
+            continue
+        merged = later.with_span(named.spans[0])
+        found = [merged if m is later else m for m in found if m is not named]
     return found
 
 
@@ -464,8 +523,8 @@ def phrase_start(text: str, start: int) -> int:
     for word in reversed(words):
         if re.search(r"[.;,!?]", before[word.end() :]):
             break  # the phrase does not reach across punctuation
-        if _DETERMINER.match(word.group(0)):
-            return max(0, start - 40) + word.start()
+        if _DETERMINER.match(word.group(0)) and not before[: word.start()].endswith("#"):
+            return max(0, start - 40) + word.start()  # "#2 lane" is a lane's number, no count
     # No article: the modifiers right before the noun ("oncoming moto"), if any.
     opened = start
     modifiers = _bare_modifiers()

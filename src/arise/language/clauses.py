@@ -191,12 +191,23 @@ def _pronoun_referent(
     if found is None:
         return carried
     plural = found.group(1).lower() == "they"
-    if _agrees(carried, plural):
+    speaks = _ego_speaks(text, spans, clause)  # then "he" or "it" is not the ego
+    if _agrees(carried, plural) and not (carried == "ego" and speaks):
         return carried
     for span, actor in reversed(spans):
-        if span.end <= clause.start and _agrees(actor, plural):
+        if span.end <= clause.start and _agrees(actor, plural) and not (actor == "ego" and speaks):
             return actor
     return carried
+
+
+_FIRST_OR_SECOND = frozenset({"i", "me", "my", "we", "us", "our", "you", "your"})
+
+
+def _ego_speaks(text: str, spans: list[tuple[Span, Actor]], clause: Clause) -> bool:
+    """Whether the ego was last named as "we", "I" or "you": then "he" or "it" is someone
+    else ("when we are passing near, he starts suddenly")."""
+    named = [span for span, actor in spans if actor == "ego" and span.end <= clause.start]
+    return bool(named) and text[named[-1].start : named[-1].end].lower() in _FIRST_OR_SECOND
 
 
 def _carry_subjects(
@@ -223,7 +234,10 @@ def _carry_subjects(
             pending.append(len(done))
             done.append(clause)
             continue
-        done.append(_with(clause, _pronoun_referent(clause, main, text, spans)))
+        referent = _pronoun_referent(clause, main, text, spans)
+        if _PRONOUN.match(text, clause.start, clause.end):
+            main = referent  # "he starts suddenly and goes out": he goes out
+        done.append(_with(clause, referent))
     for index in pending:  # no clause after it named anyone
         done[index] = _with(done[index], main)
     return done

@@ -28,9 +28,10 @@ from collections.abc import Mapping
 
 from arise.language.errors import RuleError
 
-#: Between two words: spaces, a hyphen, a comma, an arrow or brackets ("right front"
-#: matches "right-front", "ahead in" "ahead, in", "l r" "L->R", "lane 3 right" "lane 3 (right)").
-_GAP = r"(?:\s*,\s*|\s*->\s*|[\s()-]+)"
+#: Between two words: spaces, a hyphen, a comma, an arrow, an at sign or brackets ("right
+#: front" matches "right-front", "ahead in" "ahead, in", "l r" "L->R", "lane 3 right" "lane 3
+#: (right)", "stopped stop line" "stopped @ stop line").
+_GAP = r"(?:\s*,\s*|\s*->\s*|\s*@\s*|[\s()-]+)"
 #: `...`: up to eight words, within the sentence.
 _SKIP = r"(?:[\w'-]+(?:\s*,\s*|\s+)){0,8}?"  # no hyphen between: one way to split
 _WORD = re.compile(r"^[a-z0-9'][a-z0-9'-]*\*?$")
@@ -53,11 +54,23 @@ def _alternatives(words: list[str]) -> str:
     return "(?:" + "|".join(_word(word) for word in words) + ")"
 
 
+_POSSESSIVES = frozenset({"its", "my", "our", "your", "his", "her", "their"})
+
+
+def _check_determiners(pattern: str, items: list[str]) -> None:
+    """ "the ego's|its lane" reads as "the its lane": alternatives are single words, so a
+    plain "the" before a possessive never matches it. Such a pattern is a mistake."""
+    for word, following in zip(items, items[1:], strict=False):
+        if word == "the" and _POSSESSIVES & set(following.rstrip("?").split("|")):
+            raise RuleError(f"pattern {pattern!r}: 'the' before {following!r}; write 'the?'")
+
+
 def compile_pattern(pattern: str, classes: Mapping[str, tuple[str, ...]]) -> re.Pattern[str]:
     """`pattern` as a case-insensitive regex over text; raises RuleError when malformed."""
     items = pattern.strip().lower().split()
     if not items:
         raise RuleError("an empty pattern")
+    _check_determiners(pattern, items)
     pieces: list[tuple[str, bool]] = []
     not_next = ""
     if items[-1].startswith("!") and len(items) > 1:

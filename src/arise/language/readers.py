@@ -13,7 +13,9 @@ from dataclasses import dataclass, field
 from arise.language.cast import (
     VEHICLE_CLASSES,
     Cast,
+    Clause,
     Mention,
+    heading_end,
     phrase_start,
     sentence_end,
 )
@@ -56,6 +58,36 @@ class Reading:
     weather: WeatherReading | None = None
 
 
+#: Openers of clauses about the actor just named ("a truck parked on the right, which hides
+#: the car"), whoever their subject was taken to be: they never end its words.
+_ABOUT_THE_ONE_BEFORE = frozenset({"which", "that", "who", "~participle"})
+
+
+def _opens_with_its_subject(cast: Cast, clause: Clause) -> bool:
+    """Whether the clause starts with its subject named ("and the ego wants to overtake"), not
+    with a verb whose object was taken for one ("hides a second car behind it"); or goes on
+    with the subject before ("emerging between two parked cars, and crosses the path")."""
+    if not clause.explicit:
+        return clause.subject is not None and clause.opener in _GOES_ON
+    if clause.subject == "ego":
+        spans = list(cast.ego)
+    elif isinstance(clause.subject, Mention):
+        spans = list(clause.subject.spans)
+    else:
+        return False
+    first = next((s for s in spans if clause.start <= s.start < clause.end), None)
+    if first is None:
+        return False
+    before = cast.text[clause.start : phrase_start(cast.text, first.start)]
+    return all(word.lower() in _LEAD_WORDS for word in re.findall(r"[\w'-]+", before))
+
+
+#: Openers of a clause that goes on with the subject before it.
+_GOES_ON = frozenset({"and", "and then", "then", "but"})
+#: Words that may stand before a clause's subject ("and then the ego ...").
+_LEAD_WORDS = frozenset({"and", "but", "then", "so", "suddenly", "also", "now", "later"})
+
+
 def words_of(cast: Cast, mention: Mention) -> list[tuple[int, int]]:
     """The stretches of text about `mention`: from a few words before each of its spans to
     the next named actor or the end of the sentence."""
@@ -76,12 +108,34 @@ def words_of(cast: Cast, mention: Mention) -> list[tuple[int, int]]:
         starts_after += [
             c.start for c in inverted if c.start > span.end and c.subject is not mention
         ]
+        # A later clause that names someone else as its subject ("... a slow bus, and the ego
+        # wants to overtake it from the left") is that one's words.
+        starts_after += [
+            c.start
+            for c in cast.clauses
+            if c.start > span.end
+            and c.subject is not mention
+            and c.opener not in _ABOUT_THE_ONE_BEFORE
+            and _opens_with_its_subject(cast, c)
+        ]
         end = min(starts_after, default=len(text))
         stretches.append((lead, min(end, sentence_end(text, span.end))))
     for clause in inverted:
         if clause.subject is mention:
             stretches.append((clause.start, phrase_start(text, mention.spans[0].start)))
+    # "... when we pass, he starts suddenly and goes out": a clause opened by a pronoun that
+    # stands for this actor is about it too.
+    for clause in cast.clauses:
+        if (
+            clause.subject is mention
+            and not clause.explicit
+            and _PRONOUN_OPENS.match(text, clause.start)
+        ):
+            stretches.append((clause.start, clause.end))
     return stretches
+
+
+_PRONOUN_OPENS = re.compile(r"\s*(?:then\s+|suddenly\s+)?(?:it|he|she|they)\b", re.I)
 
 
 # "Merging from the on-ramp on the right, a truck ...", "Just ahead on the right, a bus
@@ -165,6 +219,23 @@ def _ego_verb_before(cast: Cast, mention: Mention, cue: Fact) -> GroundedFact | 
 
 
 _ADJACENT = (RelativePosition.ADJACENT_LANE_LEFT, RelativePosition.ADJACENT_LANE_RIGHT)
+_ALONG = (RelativePosition.AHEAD_SAME_LANE, RelativePosition.BEHIND_SAME_LANE)
+#: A start of a side, by the side said.
+_SIDED = {
+    pair[side]: pair
+    for pair in (
+        {"left": RelativePosition.ROADSIDE_LEFT, "right": RelativePosition.ROADSIDE_RIGHT},
+        {
+            "left": RelativePosition.ADJACENT_LANE_LEFT,
+            "right": RelativePosition.ADJACENT_LANE_RIGHT,
+        },
+        {
+            "left": RelativePosition.CROSSING_FROM_LEFT,
+            "right": RelativePosition.CROSSING_FROM_RIGHT,
+        },
+    )
+    for side in ("left", "right")
+}
 
 
 def _lane_number(cast: Cast, stretches: list[tuple[int, int]]) -> Hit | None:
@@ -218,8 +289,25 @@ _RIGHT = frozenset(
         RelativePosition.CROSSING_FROM_RIGHT,
     }
 )
-#: "out from in front of it": the pronoun is the actor named last before it.
-_PRONOUN = re.compile(r"\s*(?:it|them)\b", re.I)
+#: "out from in front of it", "close behind him": the pronoun is the one named last before it.
+_PRONOUN = re.compile(r"\s*(?:it|them|him|her)\b", re.I)
+#: A cue that ends in a third-person pronoun ("behind it"): whom it means decides whose
+#: start the cue tells.
+_ENDS_IN_PRONOUN = re.compile(r"\b(?:it|them|him|her)$", re.I)
+
+
+def _pronoun_means_another(cast: Cast, mention: Mention, hit: Hit) -> bool:
+    """Whether the pronoun ending a cue ("two cones behind it") stands for another road user
+    or the actor itself rather than the ego: the one named last before it, the ego when the
+    ego was named after every other road user."""
+    if not _ENDS_IN_PRONOUN.search(hit.quote):
+        return False
+    ego_last = max((s.end for s in cast.ego if s.end <= hit.start), default=-1)
+    other_last = max(
+        (s.end for m in cast.others if not m.cls.is_place for s in m.spans if s.end <= hit.start),
+        default=-1,
+    )
+    return other_last > ego_last
 
 
 def _named_after(cast: Cast, mention: Mention, at: int) -> Mention | None:
@@ -268,12 +356,8 @@ def _by_another(cast: Cast, mention: Mention) -> GroundedFact | None:
                     if theirs in _LEFT
                     else RelativePosition.CROSSING_FROM_RIGHT
                 )
-            elif (
-                hit.value == "behind"
-                and not walker
-                and (theirs in _ADJACENT or theirs is RelativePosition.ONCOMING)
-            ):
-                position = theirs
+            elif hit.value in ("behind", "ahead") and not walker:
+                position = theirs  # behind a car ahead is ahead, behind an oncoming one oncoming
             if position is not None:
                 return GroundedFact(
                     name="spawn_position",
@@ -295,28 +379,40 @@ def read_position(cast: Cast, mention: Mention, *, by_another: bool = True) -> G
     if told is not None:
         return told
     best: tuple[int, int, RelativePosition, str] | None = None
+    fallback: tuple[int, int, RelativePosition, str] | None = None  # from a weak rule
     for start, end in words_of(cast, mention):
         # A rule's `unless` may see a little past the stretch ("from behind | a parked
         # van"); the cue itself must lie inside it. The first hit of each position counts.
+        # "on the right"/"on its left" alone: a lane for a vehicle, the roadside for a walker.
+        bare = rulebook().first(Fact.BARE_SIDE, cast.text, start, end)
         cues: list[tuple[int, int, RelativePosition, str]] = []
-        seen_values: set[str] = set()
+        weak: list[tuple[int, int, RelativePosition, str]] = []
+        seen_values: set[tuple[str, bool]] = set()
         for hit in rulebook().hits(Fact.START, cast.text, start, end + 40):
-            if hit.value in seen_values:
+            if (hit.value, hit.rule.weak) in seen_values:
                 continue
             if hit.rule.about is Target.SUBJECT and subject_of(cast, hit.start) is not mention:
                 continue  # the words tell what the clause's subject does, and it is another
-            seen_values.add(hit.value)
+            if _pronoun_means_another(cast, mention, hit):
+                continue  # "behind it" of a car named before: placed by that car
+            seen_values.add((hit.value, hit.rule.weak))
             if hit.end <= end:
-                cues.append((hit.start, hit.order, RelativePosition(hit.value), hit.quote))
-        beside = [c for c in cues if c[2] in _ADJACENT]
-        if beside and any(c[2] is RelativePosition.BEHIND_SAME_LANE for c in cues):
-            # "comes from behind in the left lane": behind, but in the lane beside the ego.
-            cues = beside
+                cue = (hit.start, hit.order, RelativePosition(hit.value), hit.quote)
+                if hit.rule.side_assumed and bare and cue[2] in _SIDED:
+                    # "at the kerb ... on my left": the side said wins over the usual one.
+                    side = _SIDED[cue[2]][bare.value]
+                    cue = (cue[0], cue[1], side, f"{cue[3]} ... {bare.quote}")
+                (weak if hit.rule.weak else cues).append(cue)
+        sided = [c for c in cues if c[2] in _SIDED]
+        if sided and any(c[2] in _ALONG for c in cues):
+            # "comes from behind in the left lane", "just ahead of me in the right-hand
+            # lane", "behind me, coming from my right": the side tells more than the end.
+            cues = sided
         for cue in cues:
             if best is None or cue[:2] < best[:2]:
                 best = cue
-        # "on the right"/"on its left" alone: a lane for a vehicle, the roadside for a walker.
-        bare = rulebook().first(Fact.BARE_SIDE, cast.text, start, end)
+        if weak and fallback is None:
+            fallback = min(weak, key=lambda cue: cue[:2])
         if bare and best is None:
             side = bare.value
             walker = mention.cls.is_walker or mention.is_prop
@@ -351,6 +447,7 @@ def read_position(cast: Cast, mention: Mention, *, by_another: bool = True) -> G
                 else RelativePosition.ADJACENT_LANE_RIGHT
             )
             best = (target.start, -1, position, f"{lane_side.quote} ... {target.quote}")
+    best = best or fallback
     if best is None:
         return (
             (_by_another(cast, mention) or _ego_verb_before(cast, mention, Fact.EGO_PASSES))
@@ -518,7 +615,11 @@ def read_maneuvers(reading: Reading) -> None:
     found: list[tuple[int, str, str]] = []
     for hit in rulebook().hits(Fact.TURN, cast.text):
         found.append((hit.start, hit.value, hit.quote))
-    for position, kind, words in sorted(found):
+    # A typology heading ("Left-turn-across-path family: ...") names the crash, maybe by the
+    # other's move: the body's words come first, the heading's only when the body says none.
+    heading = heading_end(cast.text)
+    found.sort(key=lambda item: (item[0] < heading, item[0]))
+    for position, kind, words in found:
         subject = subject_of(cast, position)
         if subject is None and re.match(r"unprotected", words, re.I):
             subject = "ego"
@@ -690,7 +791,14 @@ def read_ego_stopped(reading: Reading) -> None:
 def read_stationary(cast: Cast, mention: Mention) -> GroundedFact | None:
     """Whether the words about `mention` say it stays put for the whole scene ("a truck
     parked in its lane", "a stalled car"), and move it nowhere ("a parked car pulls out")."""
-    for start, end in words_of(cast, mention):
+    stretches = words_of(cast, mention)
+    if any(
+        subject_of(cast, hit.start) is mention
+        for start, end in stretches
+        for hit in rulebook().hits(Fact.MOVING, cast.text, start, end)
+    ):
+        return None  # "parked at the side ... he starts suddenly": its own verbs move it
+    for start, end in stretches:
         still = rulebook().first(Fact.STATIONARY, cast.text, start, end)
         if still is not None and not moves(cast.text, start, end):
             return GroundedFact(

@@ -121,6 +121,12 @@ class Rule(BaseModel):
     about: Target
     when: list[str] = Field(min_length=1)
     unless: list[str] = Field(default_factory=list)
+    #: The value fills in an end the words leave open (the ego's lane with no end is the
+    #: lane ahead): another cue of the same fact in the actor's words wins over it.
+    weak: bool = False
+    #: The value's side is the usual one, not said (a kerb, a bike lane or a slip road with
+    #: no side is on the right): a side said in the actor's words turns it to that side.
+    side_assumed: bool = False
     examples: list[Example] = Field(min_length=1)
 
 
@@ -248,7 +254,7 @@ def _values(fact: Fact) -> frozenset[str] | None:
         Fact.QUANTITY: frozenset({"speed", "distance", "timing"}),
         Fact.MEETING: frozenset({"contact", "near_miss"}),
         Fact.TIMING: frozenset(Timing),
-        Fact.BY_ANOTHER: frozenset({"emerges", "behind"}),
+        Fact.BY_ANOTHER: frozenset({"emerges", "behind", "ahead"}),
         **{
             fact: frozenset({"true"})
             for fact in (
