@@ -109,8 +109,9 @@ def search_command(
     sampler: Annotated[
         str,
         typer.Option(
-            help="VerifAI sampler: random, halton, ce (cross-entropy) or bo (needs GPyOpt); "
-            "several, comma-separated, are compared."
+            help="Sampler: VerifAI's random, halton, ce (cross-entropy) or bo (needs GPyOpt), "
+            "or ours, local (a local search around the best trials so far); several, "
+            "comma-separated, are compared."
         ),
     ] = "ce",
     agent: Annotated[
