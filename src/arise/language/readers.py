@@ -460,6 +460,7 @@ def read_position(cast: Cast, mention: Mention, *, by_another: bool = True) -> G
 
 
 _COMPASS = {"north": 0, "east": 90, "south": 180, "west": 270}
+_CORNERS = {"northeast": 45, "southeast": 135, "southwest": 225, "northwest": 315}
 
 
 def _heading(text: str, start: int, end: int) -> Hit | None:
@@ -510,6 +511,14 @@ def read_compass(cast: Cast, mention: Mention) -> GroundedFact | None:
     if ego_bearing is None:
         return None
     for start, end in words_of(cast, mention):
+        corner = rulebook().first(Fact.CORNER, cast.text, start, end)
+        if corner is not None:
+            # a corner to the right of the ego's bearing (0-180 degrees round) is on its right
+            right = 0 < (_CORNERS[corner.value] - ego_bearing) % 360 < 180
+            side = RelativePosition.ROADSIDE_RIGHT if right else RelativePosition.ROADSIDE_LEFT
+            return GroundedFact(
+                name="spawn_position", value=side.value, source=FactSource.TEXT, quote=corner.quote
+            )
         curb = rulebook().first(Fact.CURB, cast.text, start, end)
         side = {90: RelativePosition.ROADSIDE_RIGHT, 270: RelativePosition.ROADSIDE_LEFT}.get(
             (_COMPASS[curb.value] - ego_bearing) % 360 if curb else -1

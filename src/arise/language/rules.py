@@ -88,6 +88,7 @@ class Fact(StrEnum):
     HEADING = "heading"  # a compass heading ("northbound", "from south to north")
     LANE_NUMBER = "lane_number"  # the numbered lane an actor is in ("#2 lane", "lane 3")
     CURB = "curb"  # the compass side of the street an actor stands at ("the north curb")
+    CORNER = "corner"  # the compass corner of a junction an actor stands at ("the NE corner")
     QUANTITY = "quantity"  # words about a speed, a distance or a moment ("at 30 mph", "suddenly")
     MEETING = (
         "meeting"  # the two touched or nearly did: contact, near_miss ("struck", "nearly hits")
@@ -251,6 +252,7 @@ def _values(fact: Fact) -> frozenset[str] | None:
         Fact.REQUIREMENT: frozenset(RequirementKind),
         Fact.HEADING: frozenset({"north", "east", "south", "west"}),
         Fact.CURB: frozenset({"north", "east", "south", "west"}),
+        Fact.CORNER: frozenset({"northeast", "southeast", "southwest", "northwest"}),
         Fact.QUANTITY: frozenset({"speed", "distance", "timing"}),
         Fact.MEETING: frozenset({"contact", "near_miss"}),
         Fact.TIMING: frozenset(Timing),
