@@ -368,6 +368,26 @@ def _by_another(cast: Cast, mention: Mention) -> GroundedFact | None:
     return None
 
 
+def _from_there(cast: Cast, mention: Mention) -> tuple[int, int, RelativePosition, str] | None:
+    """ "from there" in the actor's words: the place named last before it ("keep an eye on
+    the far pavement: a child may dart out from there")."""
+    for start, end in words_of(cast, mention):
+        there = rulebook().first(Fact.THERE, cast.text, start, end)
+        if there is None:
+            continue
+        since = max(0, there.start - 240)
+        places = [
+            hit
+            for hit in rulebook().hits(Fact.START, cast.text, since, there.start)
+            if hit.end <= there.start
+        ]
+        if places:
+            place = max(places, key=lambda hit: hit.start)
+            quote = f"{place.quote} ... {there.quote}"
+            return (place.start, place.order, RelativePosition(place.value), quote)
+    return None
+
+
 def read_position(cast: Cast, mention: Mention, *, by_another: bool = True) -> GroundedFact | None:
     """Where `mention` starts, seen from the ego, from the words about it; when they say
     none, from the start of another actor they place it by (`_by_another`)."""
@@ -447,7 +467,7 @@ def read_position(cast: Cast, mention: Mention, *, by_another: bool = True) -> G
                 else RelativePosition.ADJACENT_LANE_RIGHT
             )
             best = (target.start, -1, position, f"{lane_side.quote} ... {target.quote}")
-    best = best or fallback
+    best = best or fallback or _from_there(cast, mention)
     if best is None:
         return (
             (_by_another(cast, mention) or _ego_verb_before(cast, mention, Fact.EGO_PASSES))

@@ -88,6 +88,7 @@ class Fact(StrEnum):
     HEADING = "heading"  # a compass heading ("northbound", "from south to north")
     LANE_NUMBER = "lane_number"  # the numbered lane an actor is in ("#2 lane", "lane 3")
     CURB = "curb"  # the compass side of the street an actor stands at ("the north curb")
+    THERE = "there"  # "from there": the place named just before
     CORNER = "corner"  # the compass corner of a junction an actor stands at ("the NE corner")
     QUANTITY = "quantity"  # words about a speed, a distance or a moment ("at 30 mph", "suddenly")
     MEETING = (
@@ -269,6 +270,7 @@ def _values(fact: Fact) -> frozenset[str] | None:
                 Fact.AHEAD_OF_EGO,
                 Fact.EXIT_STREET,
                 Fact.FAR_CORNER,
+                Fact.THERE,
                 Fact.CROSSES,
                 Fact.BACKGROUND,
                 Fact.TRAFFIC_CONTROL,
