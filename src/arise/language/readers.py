@@ -33,6 +33,7 @@ from arise.vocabulary import (
     RelativePosition,
     RoadType,
     StartDetail,
+    Unit,
 )
 
 
@@ -924,6 +925,7 @@ def read_description(description: str, adversary_quote: str | None = None) -> Re
     read_ego_on_ramp(reading)
     read_road(reading)
     read_quantity(reading)
+    read_measures(reading)
     read_meeting(reading)
     return reading
 
@@ -937,6 +939,34 @@ def read_meeting(reading: Reading) -> None:
         if found is not None:
             reading.facts[name] = GroundedFact(
                 name=name, value=found.value, source=FactSource.TEXT, quote=found.quote
+            )
+
+
+_NUMBER = re.compile(r"\d+(?:\.\d+)?")
+
+
+def read_measures(reading: Reading) -> None:
+    """Numbers with their units, each in the clause of whom it is about: the first speed of
+    the ego and of the adversary become facts `ego_speed` and `adversary_speed` (metres per
+    second), which set their speeds in the script; the first other number a fact
+    `unread_measure`, left to the model's tuning."""
+    cast = reading.cast
+    hits = sorted(rulebook().hits(Fact.MEASURE, cast.text), key=lambda hit: hit.start)
+    for hit in hits:
+        number = _NUMBER.search(hit.quote)
+        if number is None:
+            continue
+        unit = Unit(hit.value)
+        who = subject_of(cast, hit.start)
+        name = "unread_measure"
+        if unit.is_speed and who == "ego":
+            name = "ego_speed"
+        elif unit.is_speed and reading.adversary is not None and who is reading.adversary:
+            name = "adversary_speed"
+        value = f"{float(number.group()) * unit.in_si:.1f}" if unit.is_speed else "unread"
+        if name not in reading.facts:
+            reading.facts[name] = GroundedFact(
+                name=name, value=value, source=FactSource.TEXT, quote=hit.quote
             )
 
 
