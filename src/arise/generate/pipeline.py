@@ -382,6 +382,7 @@ class Generator:
                 provider=self.provider,
                 maps=self.maps,
                 timing=spec.timing,
+                model_fixes_contradictions=options.gate_model_fixes,
                 temperature=options.temperature,
                 seed=options.seed,
                 rules=RuleContext(
