@@ -428,7 +428,7 @@ def read_position(cast: Cast, mention: Mention, *, by_another: bool = True) -> G
         if sided and any(c[2] in _ALONG for c in cues):
             # "comes from behind in the left lane", "just ahead of me in the right-hand
             # lane", "behind me, coming from my right": the side tells more than the end.
-            cues = sided
+            cues = [c for c in cues if c[2] not in _ALONG]
         for cue in cues:
             if best is None or cue[:2] < best[:2]:
                 best = cue
