@@ -99,11 +99,11 @@ def generate_command(
     gate_model_fixes: Annotated[
         bool,
         typer.Option(
-            "--gate-model-fixes/--no-gate-model-fixes",
+            "--model-fixes/--no-model-fixes",
             help="Let the semantic gate ask the model to fix a contradiction once no other "
             "candidate fits (off by default: the embedded model's fixes never removed one "
             "on our sets, and each took about 100 s; worth trying with a hosted model). "
-            'Example: arise generate "..." --provider openai --gate-model-fixes',
+            'Example: arise generate "..." --provider openai --model-fixes',
         ),
     ] = False,
     model_extraction: Annotated[
