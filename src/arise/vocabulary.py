@@ -272,6 +272,38 @@ class Timing(StrEnum):
     EARLY = "early"  # with time to spare: "well ahead", "in the distance"
 
 
+class Unit(StrEnum):
+    """The unit of a number the description states ("17 mph", "30 feet")."""
+
+    MPH = "mph"
+    KMH = "kmh"
+    MPS = "mps"
+    METRE = "metre"
+    FOOT = "foot"
+    YARD = "yard"
+    SECOND = "second"
+
+    @property
+    def is_speed(self) -> bool:
+        return self in (Unit.MPH, Unit.KMH, Unit.MPS)
+
+    @property
+    def in_si(self) -> float:
+        """One of this unit in metres, metres per second or seconds."""
+        return _SI[self]
+
+
+_SI = {
+    Unit.MPH: 0.44704,
+    Unit.KMH: 1 / 3.6,
+    Unit.MPS: 1.0,
+    Unit.METRE: 1.0,
+    Unit.FOOT: 0.3048,
+    Unit.YARD: 0.9144,
+    Unit.SECOND: 1.0,
+}
+
+
 # A constraint the description states in words (a requirement the semantic gate checks).
 # No docstring: it would change the extraction schema the model is given.
 class RequirementKind(StrEnum):

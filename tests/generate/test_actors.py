@@ -261,12 +261,14 @@ def test_an_actor_says_what_it_rests_on() -> None:
 def test_a_run_places_the_actors_tunes_only_the_adversary_and_drops_a_failing_actor(
     kb: KnowledgeBase, maps: dict[str, frozenset[str]], tmp_path: Path
 ) -> None:
+    # a distance the rules leave to the model's tuning
+    trucks = TRUCKS + " The trucks keep 15 m apart."
     extraction = answer("a car", "adjacent_lane_left")
-    spec = ground(TRUCKS, extraction).spec
-    found = retrieve(spec, kb, BM25Retriever(kb), maps, TRUCKS, topk=10)
+    spec = ground(trucks, extraction).spec
+    found = retrieve(spec, kb, BM25Retriever(kb), maps, trucks, topk=10)
     own = [e for e in found.chosen_entries() if e.actor is None]
     defaults = {name: value for name, (value, _) in declared_params(own).items()}
-    script = assemble(found, spec.scenic_class, TRUCKS, params={}).script
+    script = assemble(found, spec.scenic_class, trucks, params={}).script
     line = next(
         n for n, text in enumerate(script.splitlines(), 1) if text.startswith("actor3 = new")
     )
@@ -282,7 +284,7 @@ def test_a_run_places_the_actors_tunes_only_the_adversary_and_drops_a_failing_ac
         retrieval="bm25", semantic_gate=False, model_extraction=ModelExtraction.ALWAYS
     )
     with Generator(options, provider=UsageLedger(model), checker=checker) as generator:
-        run = generator.generate(TRUCKS, tmp_path)
+        run = generator.generate(trucks, tmp_path)
     assert run.status is RunStatus.EXECUTED, run.message
     tune = model.requests[1].messages[-1].content
     assert "OPT_SPAWN_BEHIND" in tune and "OPT_ACTOR" not in tune

@@ -20,8 +20,10 @@ from tests.fakes import FakeValidator, ScriptedProvider, passed
 from tests.generate_cases import FAULTY_KB
 
 DESCRIPTION = "A pedestrian steps off the right sidewalk in front of the ego car."
-# The same with words about a moment: its scripts' numbers are tuned by the model.
-TIMED_DESCRIPTION = "A pedestrian suddenly steps off the right sidewalk in front of the ego car."
+# The same with a distance the rules do not place: its scripts' numbers are tuned by the model.
+MEASURED_DESCRIPTION = (
+    "A pedestrian steps off the right sidewalk 12 m in front of the ego car."
+)
 SPEC = ScenarioSpec.model_validate(
     {
         "adversary_type": "pedestrian",
@@ -69,7 +71,7 @@ def test_a_model_that_fails_mid_run_ends_it_as_a_provider_error(
     # Extraction answers; the parameter tuning gets three replies that never fit its schema.
     model = _script(generator, ANSWER.model_dump_json(), "{}", "{}", "{}")
     events: list[ProgressEvent] = []
-    run = generator.generate(TIMED_DESCRIPTION, tmp_path, events.append)
+    run = generator.generate(MEASURED_DESCRIPTION, tmp_path, events.append)
     assert run.status is RunStatus.PROVIDER_ERROR and "TunedParams" in (run.message or "")
     assert run.spec is not None and run.retrieval is not None and not run.attempts
     assert run.usage.calls == 4 and len(model.requests) == 4
@@ -160,7 +162,7 @@ def test_topk_is_the_number_of_candidates_kept(generator: Generator, tmp_path: P
     _script(generator, ANSWER.model_dump_json(), "{}", "{}", "{}")
     generator.reconfigure(generator.options.model_copy(update={"topk": 2}))
     try:
-        run = generator.generate(TIMED_DESCRIPTION)
+        run = generator.generate(MEASURED_DESCRIPTION)
     finally:
         generator.reconfigure(generator.options.model_copy(update={"topk": 10}))
     assert run.retrieval is not None

@@ -32,7 +32,9 @@ def test_first_try_success_writes_script_report_and_picture(tmp_path, validator_
     report = _report(tmp_path)
     assert report["status"] == "executed" and report["spec"]["adversary_type"] == "bicycle"
     assert report["chosen"] and all(report["retrieved"].values())
-    assert report["llm"]["calls"] == 2 and report["llm"]["prompt_tokens"] > 0
+    # the extraction only: the text states no number, so no tuning call
+    assert report["llm"]["calls"] == 1 and report["llm"]["prompt_tokens"] > 0
+    assert any("no tuning call" in note for note in report["retrieval_notes"])
     assert (tmp_path / "scene.png").read_bytes()[:4] == b"\x89PNG"
     script = (tmp_path / "scenario.scenic").read_text()
     assert "# BEGIN BEHAVIOR" in script and "ARISE: FAILED" not in script

@@ -404,3 +404,27 @@ def test_a_spawn_on_the_exit_street_takes_the_side_the_ego_turns_to(kb) -> None:
     assert pair_approach(right, spawn) is Approach.ROADSIDE_RIGHT
     assert pair_approach(left, spawn) is Approach.ROADSIDE_LEFT
     assert pair_approach(straight, spawn) is None
+
+
+def test_an_ego_said_to_go_straight_gets_no_geometry_of_any_route(kb, bm25) -> None:
+    """ "the ego, going straight, reaches the crossroads": a geometry whose ego may take any
+    route is kept out; with the maneuver left unsaid it may still be one."""
+    from arise.language.facts import FactSource, GroundedFact
+
+    stated = make_spec(RelativePosition.CROSSING_FROM_LEFT, turn="turn_right").model_copy(
+        update={
+            "grounding": [
+                GroundedFact(
+                    name="ego_maneuver",
+                    value="go_straight",
+                    source=FactSource.TEXT,
+                    quote="going straight",
+                )
+            ]
+        }
+    )
+    result = retrieve(stated, kb, bm25, MAPS)
+    assert all("any_route" not in g.tags for g in result.candidates[Component.GEOMETRY])
+    assert any(
+        "any_route" in e.tags for e in kb.entries.values() if e.component is Component.GEOMETRY
+    )

@@ -279,6 +279,7 @@ def test_a_gate_failure_goes_to_the_model_when_no_candidate_is_left() -> None:
     fixed = "adv = new Pedestrian left of ego by 5"
     model = ScriptedProvider([f"```scenic\n{fixed}\n```"])
     run, draft, context = setup(spawn(1), provider=model)  # no other spawn
+    context.model_fixes_contradictions = True
     validate = gated([passed(), passed()], [[SIDE, WEATHER], []])
     outcome = repair_loop(run, draft.script, validate, context, max_repairs=3)
     assert outcome.status is RunStatus.EXECUTED
@@ -298,6 +299,7 @@ def test_the_gate_stops_when_the_model_fix_left_the_contradiction_and_no_candida
     second = "adv = new Pedestrian left of ego by 9"
     model = ScriptedProvider([f"```scenic\n{first}\n```", f"```scenic\n{second}\n```"])
     run, draft, context = setup(spawn(1), provider=model)  # no other spawn
+    context.model_fixes_contradictions = True
     validate = gated([passed(), passed()], [[SIDE], [SIDE]])
     outcome = repair_loop(run, draft.script, validate, context, max_repairs=8)
     assert kinds(run) == [AttemptKind.INITIAL, AttemptKind.LLM], "one model fix, not eight"
@@ -306,9 +308,21 @@ def test_the_gate_stops_when_the_model_fix_left_the_contradiction_and_no_candida
     assert (outcome.message or "").startswith("no repair left for")
 
 
+def test_by_default_the_gate_stops_when_no_candidate_is_left_without_asking_the_model() -> None:
+    model = ScriptedProvider(["```scenic\nadv = new Pedestrian left of ego by 5\n```"])
+    run, draft, context = setup(spawn(1), provider=model)  # no other spawn
+    assert not GenerateOptions().gate_model_fixes and not context.model_fixes_contradictions
+    validate = gated([passed()], [[SIDE]])
+    outcome = repair_loop(run, draft.script, validate, context, max_repairs=8)
+    assert kinds(run) == [AttemptKind.INITIAL] and model.requests == []
+    assert outcome.status is RunStatus.EXECUTED  # the script that ran, contradiction reported
+    assert (outcome.message or "").startswith("no repair left for")
+
+
 def test_missing_actors_are_not_fixed_by_dropping_one() -> None:
     model = ScriptedProvider(["```scenic\ncyclist = new Bicycle ahead of ego by 20\n```"])
     run, _, context = setup(provider=model)
+    context.model_fixes_contradictions = True
     misc = entry("misc.cone", "cone = new Cone ahead of ego by 30", needs=["ego"])
     context.retrieval.candidates[Component.MISC] = [misc]
     context.retrieval.chosen[Component.MISC] = [misc]

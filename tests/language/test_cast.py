@@ -133,3 +133,19 @@ def test_every_numbered_party_takes_its_apposition() -> None:
     )
     cast = parse(text)
     assert [(m.quote, m.cls.value) for m in cast.others] == [("V2", "Car"), ("V3", "Truck")]
+
+
+def test_the_insured_is_another_party_when_the_driver_writes() -> None:
+    text = (
+        "I had stopped at the zebra when the car behind, driven by the insured, "
+        "shunted into my rear bumper."
+    )
+    cast = parse(text)
+    assert not any("insured" in text[s.start : s.end] for s in cast.ego)
+    assert [m.cls.value for m in cast.others] == ["Car"]
+
+
+def test_a_generic_car_placed_by_the_ego_is_a_new_one() -> None:
+    # "the car behind" is not the lorry named before it
+    text = "A skip lorry was parked ahead on the left, and the car behind me hit my rear."
+    assert [m.cls.value for m in parse(text).others] == ["Truck", "Car"]

@@ -96,6 +96,16 @@ def generate_command(
             'Example: arise generate "..." --no-semantic-gate',
         ),
     ] = True,
+    gate_model_fixes: Annotated[
+        bool,
+        typer.Option(
+            "--model-fixes/--no-model-fixes",
+            help="Let the semantic gate ask the model to fix a contradiction once no other "
+            "candidate fits (off by default: the embedded model's fixes never removed one "
+            "on our sets, and each took about 100 s; worth trying with a hosted model). "
+            'Example: arise generate "..." --provider openai --model-fixes',
+        ),
+    ] = False,
     model_extraction: Annotated[
         ModelExtraction,
         typer.Option(
@@ -124,6 +134,7 @@ def generate_command(
         record=record,
         replay=replay,
         semantic_gate=semantic_gate,
+        gate_model_fixes=gate_model_fixes,
         model_extraction=model_extraction,
     )
     request = BatchRequest(

@@ -290,7 +290,11 @@ def ground(description: str, answer: ExtractionAnswer, read: Reading | None = No
         adversary_stationary="adversary_stationary" in facts,
         ego_stopped="ego_stopped" in facts,
         ego_on_ramp="ego_on_ramp" in facts,
-        quantities_stated="quantity" in facts,
+        quantities_stated="unread_measure" in facts,
+        ego_speed=float(facts["ego_speed"].value) if "ego_speed" in facts else None,
+        adversary_speed=(
+            float(facts["adversary_speed"].value) if "adversary_speed" in facts else None
+        ),
         contact_stated="contact_stated" in facts,
         timing=Timing(facts["timing"].value) if "timing" in facts else None,
         ego_plan=EgoPlan(facts["ego_plan"].value) if "ego_plan" in facts else None,

@@ -32,6 +32,7 @@ from arise.generate.retrieve import EGO_STOPPED_TAG, Retrieval, retrieve
 from arise.generate.rules import RuleContext
 from arise.generate.run import Attempt, AttemptKind, Generation, Outcome, RunStatus
 from arise.generate.spec import ScenarioSpec
+from arise.generate.speeds import stated_speeds
 from arise.generate.timing import timed_params
 from arise.kb.compose import ComposeError
 from arise.kb.loader import KnowledgeBase
@@ -337,8 +338,9 @@ class Generator:
             tunes = options.mode is not Mode.CHATSCENE and bool(run.retrieval.chosen)
             if tunes and not spec.quantities_stated:
                 run.retrieval.notes.append(
-                    "parameters: the description gives no speed, distance or moment; "
-                    "the defaults stand (no tuning call)"
+                    "parameters: the description states no number the rules leave "
+                    "unplaced; the defaults, stated speeds and timing words stand (no "
+                    "tuning call)"
                 )
             elif tunes:
                 self.provider.label = "adapt"
@@ -356,7 +358,15 @@ class Generator:
                     f"timing: the text says the adversary moves {spec.timing}: "
                     + ", ".join(f"{name} = {value}" for name, value in timed.items())
                 )
-            params = {**timed, **params}  # stated numbers, which the model read, win
+            speeds = stated_speeds(spec, own) if options.mode is not Mode.CHATSCENE else {}
+            if speeds:
+                run.retrieval.notes.append(
+                    "speeds stated in the text: "
+                    + ", ".join(f"{name} = {value}" for name, value in speeds.items())
+                )
+            # stated numbers, which the model read, win over timing words; speeds the rules
+            # read win over the model's
+            params = {**timed, **params, **speeds}
             draft = assemble(run.retrieval, adversary, run.description, params)
         except ComposeError as error:
             run.add_attempt(compose_failure(error))
@@ -372,6 +382,7 @@ class Generator:
                 provider=self.provider,
                 maps=self.maps,
                 timing=spec.timing,
+                model_fixes_contradictions=options.gate_model_fixes,
                 temperature=options.temperature,
                 seed=options.seed,
                 rules=RuleContext(

@@ -136,6 +136,8 @@ class RepairContext:
     model_asked: set[tuple[str, str, str]] = field(default_factory=set)
     maps: dict[str, frozenset[str]] = field(default_factory=dict)  # map name -> features
     timing: Timing | None = None  # when the text says the adversary moves (`generate.timing`)
+    # whether the semantic gate may ask the model to fix a contradiction (`gate_model_fixes`)
+    model_fixes_contradictions: bool = False
 
     def count_model_failure(self, section: str) -> None:
         self.llm_failures[section] = self.llm_failures.get(section, 0) + 1
@@ -302,10 +304,11 @@ def semantic_repair(
     context: RepairContext, script: str, diagnostic: Diagnostic, found: list[Contradiction]
 ) -> RepairStep:
     """A script that runs but contradicts the description: first a candidate that fits for a
-    section a contradiction names, and only when none is left, a model fix of that section
-    told what the trace showed, once per contradiction: when no candidate is left and the
-    model was already asked, nothing can remove it and the gate stops. Missing actors are
-    never fixed by dropping one."""
+    section a contradiction names, and only when none is left (and the run allows it,
+    `model_fixes_contradictions`), a model fix of that section told what the trace showed,
+    once per contradiction: when no candidate is left and the model was already asked or
+    may not be, nothing can remove it and the gate stops. Missing actors are never fixed by
+    dropping one."""
     named = [c.section for c in found] or [diagnostic.section or ""]
     sections = [s for s in dict.fromkeys(named) if s in SECTION_COMPONENT]
     for section in sections:
@@ -316,6 +319,8 @@ def semantic_repair(
         if step is not None:
             return step
     usage = Usage()
+    if not context.model_fixes_contradictions:
+        return RepairStep(None, AttemptKind.SWAP, "no other candidate fits", usage)
     for section in sections:
         own = [c for c in found if c.section == section and c.check not in SWAP_ONLY_CHECKS]
         if found and not own:

@@ -24,6 +24,7 @@ from arise.kb.loader import KnowledgeBase
 from arise.kb.retrieval.base import Retriever
 from arise.kb.schema import CONFLICT_ROUTE, Component, Entry
 from arise.kb.weather import weather_choice
+from arise.language.facts import FactSource
 from arise.vocabulary import (
     POINT_CLASSES,
     ActorClass,
@@ -58,6 +59,9 @@ EGO_ON_RAMP_TAG = "ego_on_ramp"
 PLAN_TAGS = frozenset(plan.value for plan in EgoPlan)
 #: A geometry whose ego stands still for the whole scene; only a stopped ego gets one.
 EGO_STOPPED_TAG = "ego_stopped"
+#: A geometry whose ego takes any route through a junction: not for an ego said to go
+#: straight, which it may turn off.
+ANY_ROUTE_TAG = "any_route"
 MANEUVER_TAGS: dict[EgoManeuver, tuple[str, ...]] = {
     EgoManeuver.TURN_LEFT: ("left_turn", "unprotected_left_turn"),
     EgoManeuver.TURN_RIGHT: ("right_turn",),
@@ -313,6 +317,10 @@ def _geometry_pool(
             return not features & (JUNCTION_FEATURES | {"highway"})
         return needed <= features
 
+    straight_stated = any(
+        fact.name == "ego_maneuver" and fact.source is FactSource.TEXT for fact in spec.grounding
+    )
+
     def maneuver_fits(entry: Entry) -> bool:
         tags = set(entry.tags) | set(entry.id.split(".")[-1].split("_"))
         if spec.road_type is RoadType.MERGE and (EGO_ON_RAMP_TAG in tags) != spec.ego_on_ramp:
@@ -322,7 +330,9 @@ def _geometry_pool(
         turns = {"left_turn", "right_turn", "unprotected_left_turn"}
         changes = EGO_LANE_CHANGE_TAG in tags
         if spec.ego_maneuver is EgoManeuver.GO_STRAIGHT:
-            return not tags & turns and not changes
+            # an ego that may take any route goes straight only when the text leaves it open
+            any_route = ANY_ROUTE_TAG in tags and straight_stated
+            return not tags & turns and not changes and not any_route
         if spec.ego_maneuver is EgoManeuver.CHANGE_LANE:
             # Only a geometry whose ego really changes lanes, to the stated side if any.
             side = spec.ego_lane_side

@@ -157,8 +157,15 @@ class ScenarioSpec(BaseModel):
     )
     quantities_stated: bool = Field(
         default=True,
-        description="the text says how fast, how far or when something happens; if not, "
-        "the script's tunable numbers keep their defaults (no tuning call)",
+        description="the text states a number (a distance, a time, a speed of someone "
+        "else) the fixed rules do not place; if not, the script's tunable numbers keep "
+        "their defaults, the stated speeds and the timing words aside (no tuning call)",
+    )
+    ego_speed: float | None = Field(
+        default=None, description="the ego's speed in m/s, when the text states it"
+    )
+    adversary_speed: float | None = Field(
+        default=None, description="the adversary's speed in m/s, when the text states it"
     )
     ego_stopped: bool = Field(
         default=False,

@@ -243,10 +243,18 @@ def _numbered_ego(text: str) -> str | None:
     return None if worded else min(numbers)
 
 
+#: The insurer's client, the ego of a claim the insurer writes; in one the driver writes
+#: ("I was ... the car behind, driven by the insured"), another party.
+_INSURED = re.compile(r"^(?:the insured(?:'s)?|insured vehicle|(?:the )?policyholder(?:'s)?)$", re.I)
+_FIRST_PERSON = re.compile(r"^(?:i|we|my car|my vehicle|our car|our vehicle)$", re.I)
+
+
 def _ego_spans(text: str) -> list[Span]:
     spans = [Span(*m.span()) for m in class_pattern("ego").finditer(text)]
     # "I" only as a capital letter; "we"/"i" in lower case mid-word cannot occur (whole words)
     spans = [s for s in spans if text[s.start : s.end] != "i"]
+    if any(_FIRST_PERSON.match(text[s.start : s.end]) for s in spans):
+        spans = [s for s in spans if not _INSURED.match(text[s.start : s.end])]
     nhtsa = list(_NHTSA_EGO.finditer(text))
     if nhtsa:  # the typology's style: every bare "Vehicle" is the ego
         spans += [Span(*m.span()) for m in _NHTSA_EGO_ANYWHERE.finditer(text)]
@@ -329,7 +337,7 @@ def read_cast(text: str) -> Cast:
             token = count_match.group(1).lower()
             count = int(token) if token.isdigit() else _COUNT_WORDS.get(token, 1)
         span = Span(start, end)
-        earlier = _same_thing(found, cls, before, word, ego_number)
+        earlier = _same_thing(found, cls, before, word, ego_number, after)
         taken.append((start, end))
         if earlier is not None:
             index = found.index(earlier)
@@ -471,7 +479,12 @@ def _ego_appositions(text: str, ego: list[Span], found: list[Mention]) -> list[M
 
 
 def _same_thing(
-    found: list[Mention], cls: ActorClass, before: str, word: str, ego_number: str | None
+    found: list[Mention],
+    cls: ActorClass,
+    before: str,
+    word: str,
+    ego_number: str | None,
+    after: str = "",
 ) -> Mention | None:
     """An earlier mention this one refers back to ("the van", "the other vehicle")."""
     if _THE_OTHER.search(before):
@@ -491,10 +504,19 @@ def _same_thing(
     for earlier in reversed(found):
         if earlier.cls == cls:
             return earlier
+    if _PLACED_BY_THE_EGO.match(after):
+        return None  # "the car behind": placed anew by where it is, not the lorry before
     for earlier in reversed(found):
         if generic_vehicle and earlier.cls in VEHICLE_CLASSES and cls is ActorClass.CAR:
             return earlier
     return None
+
+
+#: After a generic "the car": where it is from the ego, which names a new one.
+_PLACED_BY_THE_EGO = re.compile(
+    r"^\s*(?:behind|in front|ahead|following|next to|beside|alongside)\b(?!\s+(?:it|them)\b)",
+    re.I,
+)
 
 
 _DETERMINER = re.compile(

@@ -22,7 +22,7 @@ from arise.language.cast import Cast, Clause, Mention, Span, phrase_start
 Actor = Mention | str  # a Mention, or "ego"
 
 _BOUNDARY = re.compile(
-    r"[,;:()]|\.(?=\s|$)|[!?]"
+    r"[,;:()]|\.(?=\s|$)|[!?]|(?<=\s)[-=]>(?=\s)"  # "... ahead -> ego LC left": then
     r"|\b(?:and then|and|then|but|while|whilst|when|as|after|before|until|because|so that|"
     r"which|that|who|whereupon)\b",
     re.I,

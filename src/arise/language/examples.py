@@ -39,6 +39,8 @@ def read_facts(description: str) -> dict[str, dict[str, str]]:
         "quantity": ("scene", Fact.QUANTITY.value),
         "contact_stated": ("scene", Fact.MEETING.value),
         "timing": ("scene", Fact.TIMING.value),
+        "ego_speed": ("ego", "speed"),
+        "unread_measure": ("scene", Fact.MEASURE.value),
     }
     for name, fact in reading.facts.items():
         if name in names:
@@ -55,6 +57,8 @@ def read_facts(description: str) -> dict[str, dict[str, str]]:
         for name in ("adversary_maneuver", "start_detail"):
             if name in reading.facts:
                 adversary[name] = reading.facts[name].value
+        if "adversary_speed" in reading.facts:
+            adversary["speed"] = reading.facts["adversary_speed"].value
         if "spawn_position" in reading.facts:  # after the readers of the whole scene
             adversary[Fact.START.value] = reading.facts["spawn_position"].value
     return found

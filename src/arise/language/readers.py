@@ -33,6 +33,7 @@ from arise.vocabulary import (
     RelativePosition,
     RoadType,
     StartDetail,
+    Unit,
 )
 
 
@@ -368,6 +369,26 @@ def _by_another(cast: Cast, mention: Mention) -> GroundedFact | None:
     return None
 
 
+def _from_there(cast: Cast, mention: Mention) -> tuple[int, int, RelativePosition, str] | None:
+    """ "from there" in the actor's words: the place named last before it ("keep an eye on
+    the far pavement: a child may dart out from there")."""
+    for start, end in words_of(cast, mention):
+        there = rulebook().first(Fact.THERE, cast.text, start, end)
+        if there is None:
+            continue
+        since = max(0, there.start - 240)
+        places = [
+            hit
+            for hit in rulebook().hits(Fact.START, cast.text, since, there.start)
+            if hit.end <= there.start
+        ]
+        if places:
+            place = max(places, key=lambda hit: hit.start)
+            quote = f"{place.quote} ... {there.quote}"
+            return (place.start, place.order, RelativePosition(place.value), quote)
+    return None
+
+
 def read_position(cast: Cast, mention: Mention, *, by_another: bool = True) -> GroundedFact | None:
     """Where `mention` starts, seen from the ego, from the words about it; when they say
     none, from the start of another actor they place it by (`_by_another`)."""
@@ -407,7 +428,7 @@ def read_position(cast: Cast, mention: Mention, *, by_another: bool = True) -> G
         if sided and any(c[2] in _ALONG for c in cues):
             # "comes from behind in the left lane", "just ahead of me in the right-hand
             # lane", "behind me, coming from my right": the side tells more than the end.
-            cues = sided
+            cues = [c for c in cues if c[2] not in _ALONG]
         for cue in cues:
             if best is None or cue[:2] < best[:2]:
                 best = cue
@@ -447,7 +468,7 @@ def read_position(cast: Cast, mention: Mention, *, by_another: bool = True) -> G
                 else RelativePosition.ADJACENT_LANE_RIGHT
             )
             best = (target.start, -1, position, f"{lane_side.quote} ... {target.quote}")
-    best = best or fallback
+    best = best or fallback or _from_there(cast, mention)
     if best is None:
         return (
             (_by_another(cast, mention) or _ego_verb_before(cast, mention, Fact.EGO_PASSES))
@@ -460,6 +481,7 @@ def read_position(cast: Cast, mention: Mention, *, by_another: bool = True) -> G
 
 
 _COMPASS = {"north": 0, "east": 90, "south": 180, "west": 270}
+_CORNERS = {"northeast": 45, "southeast": 135, "southwest": 225, "northwest": 315}
 
 
 def _heading(text: str, start: int, end: int) -> Hit | None:
@@ -510,6 +532,14 @@ def read_compass(cast: Cast, mention: Mention) -> GroundedFact | None:
     if ego_bearing is None:
         return None
     for start, end in words_of(cast, mention):
+        corner = rulebook().first(Fact.CORNER, cast.text, start, end)
+        if corner is not None:
+            # a corner to the right of the ego's bearing (0-180 degrees round) is on its right
+            right = 0 < (_CORNERS[corner.value] - ego_bearing) % 360 < 180
+            side = RelativePosition.ROADSIDE_RIGHT if right else RelativePosition.ROADSIDE_LEFT
+            return GroundedFact(
+                name="spawn_position", value=side.value, source=FactSource.TEXT, quote=corner.quote
+            )
         curb = rulebook().first(Fact.CURB, cast.text, start, end)
         side = {90: RelativePosition.ROADSIDE_RIGHT, 270: RelativePosition.ROADSIDE_LEFT}.get(
             (_COMPASS[curb.value] - ego_bearing) % 360 if curb else -1
@@ -895,6 +925,7 @@ def read_description(description: str, adversary_quote: str | None = None) -> Re
     read_ego_on_ramp(reading)
     read_road(reading)
     read_quantity(reading)
+    read_measures(reading)
     read_meeting(reading)
     return reading
 
@@ -908,6 +939,34 @@ def read_meeting(reading: Reading) -> None:
         if found is not None:
             reading.facts[name] = GroundedFact(
                 name=name, value=found.value, source=FactSource.TEXT, quote=found.quote
+            )
+
+
+_NUMBER = re.compile(r"\d+(?:\.\d+)?")
+
+
+def read_measures(reading: Reading) -> None:
+    """Numbers with their units, each in the clause of whom it is about: the first speed of
+    the ego and of the adversary become facts `ego_speed` and `adversary_speed` (metres per
+    second), which set their speeds in the script; the first other number a fact
+    `unread_measure`, left to the model's tuning."""
+    cast = reading.cast
+    hits = sorted(rulebook().hits(Fact.MEASURE, cast.text), key=lambda hit: hit.start)
+    for hit in hits:
+        number = _NUMBER.search(hit.quote)
+        if number is None:
+            continue
+        unit = Unit(hit.value)
+        who = subject_of(cast, hit.start)
+        name = "unread_measure"
+        if unit.is_speed and who == "ego":
+            name = "ego_speed"
+        elif unit.is_speed and reading.adversary is not None and who is reading.adversary:
+            name = "adversary_speed"
+        value = f"{float(number.group()) * unit.in_si:.1f}" if unit.is_speed else "unread"
+        if name not in reading.facts:
+            reading.facts[name] = GroundedFact(
+                name=name, value=value, source=FactSource.TEXT, quote=hit.quote
             )
 
 

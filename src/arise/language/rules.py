@@ -42,6 +42,7 @@ from arise.vocabulary import (
     RoadType,
     StartDetail,
     Timing,
+    Unit,
 )
 
 
@@ -88,6 +89,9 @@ class Fact(StrEnum):
     HEADING = "heading"  # a compass heading ("northbound", "from south to north")
     LANE_NUMBER = "lane_number"  # the numbered lane an actor is in ("#2 lane", "lane 3")
     CURB = "curb"  # the compass side of the street an actor stands at ("the north curb")
+    MEASURE = "measure"  # a number with its unit ("17 mph", "30 feet"): the unit
+    THERE = "there"  # "from there": the place named just before
+    CORNER = "corner"  # the compass corner of a junction an actor stands at ("the NE corner")
     QUANTITY = "quantity"  # words about a speed, a distance or a moment ("at 30 mph", "suddenly")
     MEETING = (
         "meeting"  # the two touched or nearly did: contact, near_miss ("struck", "nearly hits")
@@ -251,6 +255,8 @@ def _values(fact: Fact) -> frozenset[str] | None:
         Fact.REQUIREMENT: frozenset(RequirementKind),
         Fact.HEADING: frozenset({"north", "east", "south", "west"}),
         Fact.CURB: frozenset({"north", "east", "south", "west"}),
+        Fact.CORNER: frozenset({"northeast", "southeast", "southwest", "northwest"}),
+        Fact.MEASURE: frozenset(Unit),
         Fact.QUANTITY: frozenset({"speed", "distance", "timing"}),
         Fact.MEETING: frozenset({"contact", "near_miss"}),
         Fact.TIMING: frozenset(Timing),
@@ -267,6 +273,7 @@ def _values(fact: Fact) -> frozenset[str] | None:
                 Fact.AHEAD_OF_EGO,
                 Fact.EXIT_STREET,
                 Fact.FAR_CORNER,
+                Fact.THERE,
                 Fact.CROSSES,
                 Fact.BACKGROUND,
                 Fact.TRAFFIC_CONTROL,
