@@ -21,9 +21,7 @@ from tests.generate_cases import FAULTY_KB
 
 DESCRIPTION = "A pedestrian steps off the right sidewalk in front of the ego car."
 # The same with a distance the rules do not place: its scripts' numbers are tuned by the model.
-MEASURED_DESCRIPTION = (
-    "A pedestrian steps off the right sidewalk 12 m in front of the ego car."
-)
+MEASURED_DESCRIPTION = "A pedestrian steps off the right sidewalk 12 m in front of the ego car."
 SPEC = ScenarioSpec.model_validate(
     {
         "adversary_type": "pedestrian",

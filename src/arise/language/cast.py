@@ -245,7 +245,9 @@ def _numbered_ego(text: str) -> str | None:
 
 #: The insurer's client, the ego of a claim the insurer writes; in one the driver writes
 #: ("I was ... the car behind, driven by the insured"), another party.
-_INSURED = re.compile(r"^(?:the insured(?:'s)?|insured vehicle|(?:the )?policyholder(?:'s)?)$", re.I)
+_INSURED = re.compile(
+    r"^(?:the insured(?:'s)?|insured vehicle|(?:the )?policyholder(?:'s)?)$", re.I
+)
 _FIRST_PERSON = re.compile(r"^(?:i|we|my car|my vehicle|our car|our vehicle)$", re.I)
 
 
