@@ -421,8 +421,8 @@ def read_position(cast: Cast, mention: Mention, *, by_another: bool = True) -> G
                 cue = (hit.start, hit.order, RelativePosition(hit.value), hit.quote)
                 if hit.rule.side_assumed and bare and cue[2] in _SIDED:
                     # "at the kerb ... on my left": the side said wins over the usual one.
-                    side = _SIDED[cue[2]][bare.value]
-                    cue = (cue[0], cue[1], side, f"{cue[3]} ... {bare.quote}")
+                    said = _SIDED[cue[2]][bare.value]
+                    cue = (cue[0], cue[1], said, f"{cue[3]} ... {bare.quote}")
                 (weak if hit.rule.weak else cues).append(cue)
         sided = [c for c in cues if c[2] in _SIDED]
         if sided and any(c[2] in _ALONG for c in cues):
@@ -536,9 +536,9 @@ def read_compass(cast: Cast, mention: Mention) -> GroundedFact | None:
         if corner is not None:
             # a corner to the right of the ego's bearing (0-180 degrees round) is on its right
             right = 0 < (_CORNERS[corner.value] - ego_bearing) % 360 < 180
-            side = RelativePosition.ROADSIDE_RIGHT if right else RelativePosition.ROADSIDE_LEFT
+            kerb = RelativePosition.ROADSIDE_RIGHT if right else RelativePosition.ROADSIDE_LEFT
             return GroundedFact(
-                name="spawn_position", value=side.value, source=FactSource.TEXT, quote=corner.quote
+                name="spawn_position", value=kerb.value, source=FactSource.TEXT, quote=corner.quote
             )
         curb = rulebook().first(Fact.CURB, cast.text, start, end)
         side = {90: RelativePosition.ROADSIDE_RIGHT, 270: RelativePosition.ROADSIDE_LEFT}.get(
