@@ -288,6 +288,10 @@ class Unit(StrEnum):
         return self in (Unit.MPH, Unit.KMH, Unit.MPS)
 
     @property
+    def is_distance(self) -> bool:
+        return self in (Unit.METRE, Unit.FOOT, Unit.YARD)
+
+    @property
     def in_si(self) -> float:
         """One of this unit in metres, metres per second or seconds."""
         return _SI[self]

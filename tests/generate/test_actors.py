@@ -261,8 +261,8 @@ def test_an_actor_says_what_it_rests_on() -> None:
 def test_a_run_places_the_actors_tunes_only_the_adversary_and_drops_a_failing_actor(
     kb: KnowledgeBase, maps: dict[str, frozenset[str]], tmp_path: Path
 ) -> None:
-    # a distance the rules leave to the model's tuning
-    trucks = TRUCKS + " The trucks keep 15 m apart."
+    # a time the rules leave to the model's tuning
+    trucks = TRUCKS + " The trucks keep 2 seconds apart."
     extraction = answer("a car", "adjacent_lane_left")
     spec = ground(trucks, extraction).spec
     found = retrieve(spec, kb, BM25Retriever(kb), maps, trucks, topk=10)

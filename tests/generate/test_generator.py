@@ -20,8 +20,11 @@ from tests.fakes import FakeValidator, ScriptedProvider, passed
 from tests.generate_cases import FAULTY_KB
 
 DESCRIPTION = "A pedestrian steps off the right sidewalk in front of the ego car."
-# The same with a distance the rules do not place: its scripts' numbers are tuned by the model.
-MEASURED_DESCRIPTION = "A pedestrian steps off the right sidewalk 12 m in front of the ego car."
+# The same with a time the rules do not place: its scripts' numbers are tuned by the model.
+MEASURED_DESCRIPTION = (
+    "A pedestrian steps off the right sidewalk in front of the ego car, 2 seconds before it "
+    "arrives."
+)
 SPEC = ScenarioSpec.model_validate(
     {
         "adversary_type": "pedestrian",

@@ -25,8 +25,12 @@ def test_the_egos_and_the_adversarys_speeds_are_read_from_their_own_clauses() ->
     assert not spec.quantities_stated  # nothing left for the model to tune
 
 
-def test_a_distance_is_left_to_the_models_tuning() -> None:
-    spec = _spec("A removal van stops about 30 feet ahead of the ego in its lane.")
+def test_a_distance_keeps_the_defaults_and_a_time_goes_to_the_models_tuning() -> None:
+    # a distance tells the moment of the conflict, which the behaviors time to the ego
+    assert not _spec(
+        "A removal van stops about 30 feet ahead of the ego in its lane."
+    ).quantities_stated
+    spec = _spec("A removal van ahead of the ego brakes hard 2 seconds after the lights.")
     assert spec.ego_speed is None and spec.quantities_stated
 
 

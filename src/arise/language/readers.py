@@ -948,8 +948,10 @@ _NUMBER = re.compile(r"\d+(?:\.\d+)?")
 def read_measures(reading: Reading) -> None:
     """Numbers with their units, each in the clause of whom it is about: the first speed of
     the ego and of the adversary become facts `ego_speed` and `adversary_speed` (metres per
-    second), which set their speeds in the script; the first other number a fact
-    `unread_measure`, left to the model's tuning."""
+    second), which set their speeds in the script; the first other speed or time a fact
+    `unread_measure`, left to the model's tuning. A distance is none of these: a narrative's
+    "about 30 feet ahead" or "stopped 3 feet short" tells the moment of the conflict, which
+    the behaviors already time to the ego, or its outcome."""
     cast = reading.cast
     hits = sorted(rulebook().hits(Fact.MEASURE, cast.text), key=lambda hit: hit.start)
     for hit in hits:
@@ -957,6 +959,8 @@ def read_measures(reading: Reading) -> None:
         if number is None:
             continue
         unit = Unit(hit.value)
+        if unit.is_distance:
+            continue
         who = subject_of(cast, hit.start)
         name = "unread_measure"
         if unit.is_speed and who == "ego":
