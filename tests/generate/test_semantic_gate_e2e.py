@@ -49,7 +49,10 @@ def generator(validator_pool: WorkerPool) -> Iterator[Generator]:
 
 
 def _run(
-    generator: Generator, participants: list[str], model: ScriptedProvider
+    generator: Generator,
+    participants: list[str],
+    model: ScriptedProvider,
+    model_fixes: bool = False,
 ) -> tuple[Generation, RunStatus]:
     kb = {e.id: e for e in generator.kb}
     weather = [
@@ -77,6 +80,7 @@ def _run(
         provider=model,
         rules=RuleContext(adversary_class="Pedestrian"),
         maps=generator.maps,
+        model_fixes_contradictions=model_fixes,
     )
     validate = generator.validator(None, spec)
     assert isinstance(validate, GatedValidate), "the gate is on by default in arise mode"
@@ -104,7 +108,8 @@ def test_a_missing_actor_the_model_cannot_add_leaves_the_run_executed(
     generator: Generator,
 ) -> None:
     model = ScriptedProvider(["```scenic\n```", "```scenic\n```"])  # unusable answers
-    run, status = _run(generator, ["a parked van on the left", "a cyclist"], model)
+    # with --model-fixes: by default the gate would stop after the swap, asking no one
+    run, status = _run(generator, ["a parked van on the left", "a cyclist"], model, True)
     assert status is RunStatus.EXECUTED, "never FAILED only because of the gate"
     assert len(model.requests) == 2, "no swap adds an actor: the model was asked for MISC"
     assert "Section MISC:" in model.requests[0].messages[-1].content

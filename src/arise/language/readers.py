@@ -297,12 +297,32 @@ _PRONOUN = re.compile(r"\s*(?:it|them|him|her)\b", re.I)
 _ENDS_IN_PRONOUN = re.compile(r"\b(?:it|them|him|her)$", re.I)
 
 
+_OWNED = re.compile(r"(?:'s|^(?:my|our|your|its))$", re.I)
+
+
+def _ego_named_in(cast: Cast, clause: Clause) -> bool:
+    """Whether the clause names the ego itself, not only as an owner ("the AV's lane")."""
+    return any(
+        clause.start <= span.start < clause.end
+        and not _OWNED.search(cast.text[span.start : span.end])
+        for span in cast.ego
+    )
+
+
 def _pronoun_means_another(cast: Cast, mention: Mention, hit: Hit) -> bool:
     """Whether the pronoun ending a cue ("two cones behind it") stands for another road user
-    or the actor itself rather than the ego: the one named last before it, the ego when the
-    ego was named after every other road user."""
+    or the actor itself rather than the ego: the subject of its clause when that is another
+    than the actor, else of the clauses before it ("the ego follows a car while a motorbike
+    comes up behind it": the ego); without clauses, the one named last before it."""
     if not _ENDS_IN_PRONOUN.search(hit.quote):
         return False
+    before = [c for c in cast.clauses if c.start <= hit.start]
+    for clause in reversed(before):
+        if clause.subject is None or clause.subject is mention:
+            continue
+        if clause.subject == "ego" and not _ego_named_in(cast, clause):
+            continue  # "swerved into the AV's lane": the AV only owns the lane
+        return clause.subject != "ego"
     ego_last = max((s.end for s in cast.ego if s.end <= hit.start), default=-1)
     other_last = max(
         (s.end for m in cast.others if not m.cls.is_place for s in m.spans if s.end <= hit.start),
