@@ -149,3 +149,18 @@ def test_a_generic_car_placed_by_the_ego_is_a_new_one() -> None:
     # "the car behind" is not the lorry named before it
     text = "A skip lorry was parked ahead on the left, and the car behind me hit my rear."
     assert [m.cls.value for m in parse(text).others] == ["Truck", "Car"]
+
+
+def test_the_junction_box_is_no_box() -> None:
+    text = "A van ran the red light and stopped in the junction box; a box junction followed."
+    assert [m.cls.value for m in parse(text).others] == ["Van"]
+
+
+def test_a_bare_noun_in_terse_notes_is_the_one_named_before() -> None:
+    # no articles: the second "van" is the first; "car behind" is placed anew
+    text = "van stalled in ego lane, ego waits; van restarts. lead car brakes, car behind honks."
+    assert [(m.cls.value, len(m.spans)) for m in parse(text).others] == [
+        ("Van", 2),
+        ("Car", 1),
+        ("Car", 1),
+    ]

@@ -310,6 +310,8 @@ def read_cast(text: str) -> Cast:
         after = text[end:]
         if kind in ("noun", "make") and _not_an_actor(after, lex.not_an_actor_before):
             continue
+        if kind == "noun" and _qualified(text[:start], lex.not_an_actor_after):
+            continue  # "the junction box" is no box
         word = text[start:end]
         before = text[max(0, start - 40) : start]
         if kind.startswith(("V", "P")) and kind != "noun" and kind in numbered:
@@ -340,6 +342,9 @@ def read_cast(text: str) -> Cast:
             count = int(token) if token.isdigit() else _COUNT_WORDS.get(token, 1)
         span = Span(start, end)
         earlier = _same_thing(found, cls, before, word, ego_number, after)
+        if earlier is None and kind == "noun" and _bare_repeat(text, start, word, after, cls):
+            # terse notes drop articles: "bus in bay ... ped emerges ahead of bus nose"
+            earlier = next((m for m in reversed(found) if m.cls == cls), None)
         taken.append((start, end))
         if earlier is not None:
             index = found.index(earlier)
@@ -370,6 +375,23 @@ def _owner_of(text: str, vehicle: Mention, start: int) -> bool:
 def _not_an_actor(after: str, words: tuple[str, ...]) -> bool:
     """ "bike lane", "car park", "the driver's door": the noun qualifies another word."""
     found = re.match(r"^(?:'s)?[\s-]+([\w-]+)", after)
+    return bool(found and found.group(1).lower() in words)
+
+
+def _bare_repeat(text: str, start: int, word: str, after: str, cls: ActorClass) -> bool:
+    """A singular noun with nothing before it (no article, count or modifier) that is not
+    placed anew ("car behind"): in terse notes, the one of that class named before."""
+    return (
+        phrase_start(text, start) == start
+        and (not _PLURAL.search(word) or cls in (ActorClass.BUS, ActorClass.DEBRIS))
+        and not _PLACED_BY_THE_EGO.match(after)
+        and not re.search(r"\d\s*x?\s*$|\b(?:another|other|second|2nd|new)\s+$", text[:start], re.I)
+    )
+
+
+def _qualified(before: str, words: tuple[str, ...]) -> bool:
+    """ "junction box": a word before the noun makes it a thing of the road, no actor."""
+    found = re.search(r"([\w-]+)[\s-]+$", before)
     return bool(found and found.group(1).lower() in words)
 
 

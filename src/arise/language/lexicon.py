@@ -26,6 +26,7 @@ class Lexicon:
     #: (Scenic class, phrases), most specific class first.
     nouns: tuple[tuple[str, tuple[str, ...]], ...]
     not_an_actor_before: tuple[str, ...]
+    not_an_actor_after: tuple[str, ...]
     makes: tuple[str, ...]
     colours: tuple[str, ...]
     #: Every noun, one named group per class (see `_noun_pattern`).
@@ -57,6 +58,7 @@ def lexicon() -> Lexicon:
         slot_words={slot_key(k): v.lower() for k, v in slot_words.items()},
         nouns=nouns,
         not_an_actor_before=_strings(data["not_an_actor_before"], "not_an_actor_before"),
+        not_an_actor_after=_strings(data.get("not_an_actor_after", []), "not_an_actor_after"),
         makes=_strings(data["makes"], "makes"),
         colours=_strings(data["colours"], "colours"),
         noun_pattern=_noun_pattern(nouns),
