@@ -38,6 +38,13 @@ def _subject_of(text: str, words: str) -> str | None:
         # a place opening the clause puts the subject after its verb
         ("The ego waits. Out of the side road is coming a tractor.", "is coming", "a tractor"),
         ("The ego brakes, then from behind a moped is coming fast.", "fast", "a moped"),
+        # "It" opening a sentence means one named before, not a later sentence's subject
+        (
+            "My car was in the left lane. A van was parked on my right. It pulled out. "
+            "I braked hard.",
+            "pulled out",
+            "A van",
+        ),
     ],
 )
 def test_each_verb_has_the_subject_of_its_clause(text: str, words: str, subject: str) -> None:

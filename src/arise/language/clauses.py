@@ -230,10 +230,13 @@ def _carry_subjects(
                 pending = []
             sentence_open = False
             continue
-        if sentence_open:
+        if sentence_open and not _PRONOUN.match(text, clause.start, clause.end):
             pending.append(len(done))
             done.append(clause)
             continue
+        # a pronoun opening a sentence ("It pulled out") means one named before it, not the
+        # subject of a later clause
+        sentence_open = False
         referent = _pronoun_referent(clause, main, text, spans)
         if _PRONOUN.match(text, clause.start, clause.end):
             main = referent  # "he starts suddenly and goes out": he goes out
