@@ -294,11 +294,6 @@ def test_a_car_parked_on_the_left_stands_at_the_left_kerb(
     chosen, runs = simulated(spec, "Car", kb, maps, validator_pool)
     assert "spawn.parked_left_curb_ahead" in chosen
     for seed, simulation in runs:
-        agents = simulation.agents
-        ego_trace = next(a for a in agents if a.is_ego)
-        adversary = find_adversary(agents)
-        assert adversary is not None, chosen
-        relation = start_relation(ego_trace, adversary)
-        assert relation is not None, chosen
+        _, adversary, relation = ego_and_adversary(simulation, chosen)
         assert relation.side == "left" and relation.ahead > 0, (chosen, seed, relation.describe())
         assert travel_heading(adversary) is None, (chosen, seed, "it moved")
