@@ -157,9 +157,9 @@ class ScenarioSpec(BaseModel):
     )
     quantities_stated: bool = Field(
         default=True,
-        description="the text states a number (a distance, a time, a speed of someone "
-        "else) the fixed rules do not place; if not, the script's tunable numbers keep "
-        "their defaults, the stated speeds and the timing words aside (no tuning call)",
+        description="the text states a number the fixed rules do not place (a time, a "
+        "speed of someone else); if not, the script's tunable numbers keep their defaults, "
+        "the stated speeds and the timing words aside (no tuning call)",
     )
     ego_speed: float | None = Field(
         default=None, description="the ego's speed in m/s, when the text states it"
