@@ -109,9 +109,8 @@ def search_command(
     sampler: Annotated[
         str,
         typer.Option(
-            help="Sampler: VerifAI's random, halton, ce (cross-entropy) or bo (needs GPyOpt), "
-            "or ours, local (a local search around the best trials so far); several, "
-            "comma-separated, are compared."
+            help="VerifAI sampler: random, halton, ce (cross-entropy) or bo (needs GPyOpt); "
+            "several, comma-separated, are compared."
         ),
     ] = "ce",
     agent: Annotated[

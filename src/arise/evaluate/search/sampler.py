@@ -9,10 +9,6 @@ and turns a trial's score into the feedback VerifAI's active samplers learn from
   `ELITE_SHARE` of the scores so far and the critical level (TTC 1 s, contact);
 - Bayesian optimisation (`bo`, needs GPyOpt) models the score itself and minimises it.
 
-`local` is ours, not VerifAI's (`local.py`): a local search around the best trials so far,
-told the score itself. It found the agent's failures sooner than random where `ce` did
-not (docs/search.md).
-
 VerifAI draws from Python's and numpy's global random generators; each sampler keeps its
 own states and swaps them in around every call, so a search is reproducible from its
 seed, whatever else runs in the process, and replays exactly when it resumes.
@@ -29,7 +25,6 @@ from enum import StrEnum
 from typing import Any
 
 from arise.evaluate.search.errors import SamplerUnavailable
-from arise.evaluate.search.local import LocalSearch, unit_to_values
 from arise.evaluate.search.space import DECIMALS, FreeParam, ParamKind, ParamValue
 
 #: Share of the scores so far that counts as elite for the cross-entropy update.
@@ -49,16 +44,10 @@ class SamplerKind(StrEnum):
     HALTON = "halton"  # low-discrepancy Halton sequence (passive)
     CE = "ce"  # cross-entropy (active)
     BO = "bo"  # Bayesian optimisation through GPyOpt (active)
-    LOCAL = "local"  # ours: local search around the best trials so far (active)
 
     @property
     def active(self) -> bool:
-        return self in (SamplerKind.CE, SamplerKind.BO, SamplerKind.LOCAL)
-
-    @property
-    def verifai(self) -> bool:
-        """Is it one of VerifAI's samplers (and so needs VerifAI installed)?"""
-        return self is not SamplerKind.LOCAL
+        return self in (SamplerKind.CE, SamplerKind.BO)
 
 
 @dataclass
@@ -75,8 +64,6 @@ def verifai_available() -> bool:
 
 
 def _require(kind: SamplerKind) -> None:
-    if not kind.verifai:
-        return
     if not verifai_available():
         raise SamplerUnavailable(
             "`arise search` needs VerifAI: pip install --no-deps verifai==2.2.0 dill "
@@ -110,23 +97,19 @@ def _sampler_params(kind: SamplerKind) -> Any:
 
 
 class ParamSampler:
-    """A sampler over the free parameters of one script: VerifAI's, or our local search."""
+    """A VerifAI sampler over the free parameters of one script."""
 
     def __init__(
         self, params: list[FreeParam], kind: SamplerKind, seed: int, critical_level: float
     ):
         _require(kind)
+        from verifai.features import Feature, FeatureSpace
+        from verifai.server import choose_sampler
+
         self.params = params
         self.kind = kind
         self.critical_level = critical_level
         self.scores: list[float] = []
-        self._local: LocalSearch | None = None
-        if kind is SamplerKind.LOCAL:
-            self._local = LocalSearch(len(params), seed)
-            return
-        from verifai.features import Feature, FeatureSpace
-        from verifai.server import choose_sampler
-
         generator = random.Random(seed)
         self._py_state = generator.getstate()
         import numpy
@@ -151,9 +134,6 @@ class ParamSampler:
             numpy.random.set_state(saved_np)
 
     def propose(self) -> Proposal:
-        if self._local is not None:
-            point = self._local.propose()
-            return Proposal(values=unit_to_values(self.params, point), point=point, info=None)
         with self._own_random():
             point, info = self._sampler.getSample()
         values: dict[str, ParamValue] = {}
@@ -183,8 +163,5 @@ class ParamSampler:
     def tell(self, proposal: Proposal, score: float) -> None:
         """Report a trial's score (a failed trial: the worst score) to the sampler."""
         rho = self.feedback(score)
-        if self._local is not None:
-            self._local.tell(proposal.point, rho)
-            return
         with self._own_random():
             self._sampler.update(proposal.point, proposal.info, rho)
