@@ -100,10 +100,11 @@ def test_warm_builds_and_rebuilds_a_damaged_entry(model_path: Path) -> None:
 def test_generate_builds_the_store_once_and_writes_the_same_script(
     model_path: Path, tmp_path: Path
 ) -> None:
-    # "suddenly": words of a moment, so the script's numbers are tuned (a second prefix).
+    # "2 seconds": a time the rules leave to the model, so the script's numbers are tuned
+    # (a second prefix).
     description = (
-        "The ego drives along a straight road when a pedestrian suddenly steps off the "
-        "right sidewalk and stops in its lane."
+        "The ego drives along a straight road when a pedestrian steps off the right "
+        "sidewalk 2 seconds before it arrives and stops in its lane."
     )
     env = {**os.environ, "ARISE_CACHE_DIR": str(tmp_path / "cache"), "ARISE_LLM_CACHE": "off"}
     outputs = []
