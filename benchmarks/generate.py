@@ -10,7 +10,8 @@ cache off), so the runs land in OUT/bench.sqlite, an interrupted run resumes, an
 With `--prefix-store off|on|both` it runs instead each description in a new
 `arise generate` process, as a user would, with the embedded model's prefix store off or
 on (both: alternately, off then on for each description, in one run). The store starts
-empty in OUT/cache, so the first run with it on builds it. It prints the median seconds
+empty in OUT/cache, so the first run with it on builds it; with `--warm` it is built by
+`arise llm warm` before any timed run, as on a machine where arise has run once. It prints the median seconds
 and tokens per executable script and where the tokens go per call kind; rows go to
 OUT/prefix-runs.jsonl, and an interrupted run resumes.
 Definitions follow the paper: ESR = executable scripts / runs; RCR = mean repair iterations
@@ -122,11 +123,26 @@ def select_prompts(args: argparse.Namespace) -> list[BenchPrompt]:
     return prompts[: args.limit] if args.limit else prompts
 
 
+def warm_store(out: Path) -> float:
+    """`arise llm warm` into OUT/cache, as an install would do once: the seconds it took."""
+    started = time.perf_counter()
+    subprocess.run(
+        [sys.executable, "-m", "arise", "llm", "warm"],
+        env={**os.environ, "ARISE_CACHE_DIR": str(out / "cache")},
+        check=True,
+        capture_output=True,
+        timeout=1800,
+    )
+    return time.perf_counter() - started
+
+
 def prefix_store_runs(args: argparse.Namespace, out: Path) -> None:
     prompts = select_prompts(args)
     stores = ["off", "on"] if args.prefix_store == "both" else [args.prefix_store]
     rows_path = out / "prefix-runs.jsonl"
     out.mkdir(parents=True, exist_ok=True)
+    if args.warm and not rows_path.is_file():
+        print(f"store built ahead by `arise llm warm` in {warm_store(out):.0f} s", flush=True)
     rows = (
         [json.loads(x) for x in rows_path.read_text().splitlines()] if rows_path.is_file() else []
     )
@@ -225,6 +241,12 @@ def main() -> None:
     )
     parser.add_argument(
         "--sample", type=int, default=None, help="N prompts spread evenly over the set"
+    )
+    parser.add_argument(
+        "--warm",
+        action="store_true",
+        help="with --prefix-store: build the store with `arise llm warm` before the first run "
+        "(as an installed machine has it), so no timed run pays for building it",
     )
     args = parser.parse_args()
     out = Path(args.out).resolve()
