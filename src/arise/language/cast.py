@@ -350,7 +350,7 @@ def read_cast(text: str) -> Cast:
             index = found.index(earlier)
             found[index] = earlier.with_span(span)
             continue
-        plural = bool(_PLURAL.search(word)) and cls not in (ActorClass.BUS, ActorClass.DEBRIS)
+        plural = _is_plural(word, cls)
         counted = bool(count_match) or not (plural or _GROUP.search(before))
         if count == 1 and plural and cls is not ActorClass.PEDESTRIAN:
             count = 2 if not count_match else count
@@ -378,14 +378,23 @@ def _not_an_actor(after: str, words: tuple[str, ...]) -> bool:
     return bool(found and found.group(1).lower() in words)
 
 
+def _is_plural(word: str, cls: ActorClass) -> bool:
+    """ "cars", "children"; not "bus" or "debris", whose ending only looks plural."""
+    return bool(_PLURAL.search(word)) and cls not in (ActorClass.BUS, ActorClass.DEBRIS)
+
+
+#: Words right before a bare noun that make it one more of its class ("2x cone", "another van").
+_ONE_MORE = re.compile(r"\d\s*x?\s*$|\b(?:another|other|second|2nd|new)\s+$", re.I)
+
+
 def _bare_repeat(text: str, start: int, word: str, after: str, cls: ActorClass) -> bool:
     """A singular noun with nothing before it (no article, count or modifier) that is not
     placed anew ("car behind"): in terse notes, the one of that class named before."""
     return (
         phrase_start(text, start) == start
-        and (not _PLURAL.search(word) or cls in (ActorClass.BUS, ActorClass.DEBRIS))
+        and not _is_plural(word, cls)
         and not _PLACED_BY_THE_EGO.match(after)
-        and not re.search(r"\d\s*x?\s*$|\b(?:another|other|second|2nd|new)\s+$", text[:start], re.I)
+        and not _ONE_MORE.search(text[:start])
     )
 
 
