@@ -477,15 +477,15 @@ def heading_end(text: str) -> int:
 def _heading_mentions(text: str, found: list[Mention]) -> list[Mention]:
     """A road user the heading names is the one the text then describes: "Lead vehicle
     stopped: ... a disabled passenger car stands still" is one car."""
-    heading = _HEADING.match(text)
-    if heading is None:
+    end = heading_end(text)
+    if not end:
         return found
-    for named in [m for m in found if m.start < heading.end() and len(m.spans) == 1]:
+    for named in [m for m in found if m.start < end and len(m.spans) == 1]:
         later = next(
             (
                 m
                 for m in found
-                if m.start >= heading.end()
+                if m.start >= end
                 and (
                     m.cls == named.cls or (named.cls is ActorClass.CAR and m.cls in VEHICLE_CLASSES)
                 )

@@ -230,7 +230,8 @@ def _carry_subjects(
                 pending = []
             sentence_open = False
             continue
-        if sentence_open and not _PRONOUN.match(text, clause.start, clause.end):
+        opens_with_pronoun = _PRONOUN.match(text, clause.start, clause.end) is not None
+        if sentence_open and not opens_with_pronoun:
             pending.append(len(done))
             done.append(clause)
             continue
@@ -238,7 +239,7 @@ def _carry_subjects(
         # subject of a later clause
         sentence_open = False
         referent = _pronoun_referent(clause, main, text, spans)
-        if _PRONOUN.match(text, clause.start, clause.end):
+        if opens_with_pronoun:
             main = referent  # "he starts suddenly and goes out": he goes out
         done.append(_with(clause, referent))
     for index in pending:  # no clause after it named anyone

@@ -219,24 +219,17 @@ def _ego_verb_before(cast: Cast, mention: Mention, cue: Fact) -> GroundedFact | 
     return None
 
 
-_ADJACENT = (RelativePosition.ADJACENT_LANE_LEFT, RelativePosition.ADJACENT_LANE_RIGHT)
 _ALONG = (RelativePosition.AHEAD_SAME_LANE, RelativePosition.BEHIND_SAME_LANE)
-#: A start of a side, by the side said.
-_SIDED = {
-    pair[side]: pair
-    for pair in (
-        {"left": RelativePosition.ROADSIDE_LEFT, "right": RelativePosition.ROADSIDE_RIGHT},
-        {
-            "left": RelativePosition.ADJACENT_LANE_LEFT,
-            "right": RelativePosition.ADJACENT_LANE_RIGHT,
-        },
-        {
-            "left": RelativePosition.CROSSING_FROM_LEFT,
-            "right": RelativePosition.CROSSING_FROM_RIGHT,
-        },
-    )
-    for side in ("left", "right")
-}
+#: The starts that have a side, in pairs: the same start on the left and on the right.
+_PAIRS: tuple[dict[str, RelativePosition], ...] = (
+    {"left": RelativePosition.ROADSIDE_LEFT, "right": RelativePosition.ROADSIDE_RIGHT},
+    {"left": RelativePosition.ADJACENT_LANE_LEFT, "right": RelativePosition.ADJACENT_LANE_RIGHT},
+    {"left": RelativePosition.CROSSING_FROM_LEFT, "right": RelativePosition.CROSSING_FROM_RIGHT},
+)
+#: A start of a side -> its pair, by the side said.
+_SIDED = {position: pair for pair in _PAIRS for position in pair.values()}
+#: A start of a side -> that side.
+_SIDE_OF = {position: side for pair in _PAIRS for side, position in pair.items()}
 
 
 def _lane_number(cast: Cast, stretches: list[tuple[int, int]]) -> Hit | None:
@@ -276,25 +269,12 @@ def read_lane_number(cast: Cast, mention: Mention) -> GroundedFact | None:
     )
 
 
-_LEFT = frozenset(
-    {
-        RelativePosition.ROADSIDE_LEFT,
-        RelativePosition.ADJACENT_LANE_LEFT,
-        RelativePosition.CROSSING_FROM_LEFT,
-    }
-)
-_RIGHT = frozenset(
-    {
-        RelativePosition.ROADSIDE_RIGHT,
-        RelativePosition.ADJACENT_LANE_RIGHT,
-        RelativePosition.CROSSING_FROM_RIGHT,
-    }
-)
+_THIRD_PERSON = r"(?:it|them|him|her)"
 #: "out from in front of it", "close behind him": the pronoun is the one named last before it.
-_PRONOUN = re.compile(r"\s*(?:it|them|him|her)\b", re.I)
+_PRONOUN = re.compile(rf"\s*{_THIRD_PERSON}\b", re.I)
 #: A cue that ends in a third-person pronoun ("behind it"): whom it means decides whose
 #: start the cue tells.
-_ENDS_IN_PRONOUN = re.compile(r"\b(?:it|them|him|her)$", re.I)
+_ENDS_IN_PRONOUN = re.compile(rf"\b{_THIRD_PERSON}$", re.I)
 
 
 _OWNED = re.compile(r"(?:'s|^(?:my|our|your|its))$", re.I)
@@ -371,12 +351,8 @@ def _by_another(cast: Cast, mention: Mention) -> GroundedFact | None:
                 continue
             theirs = RelativePosition(told.value)
             position: RelativePosition | None = None
-            if hit.value == "emerges" and walker and theirs in _LEFT | _RIGHT:
-                position = (
-                    RelativePosition.CROSSING_FROM_LEFT
-                    if theirs in _LEFT
-                    else RelativePosition.CROSSING_FROM_RIGHT
-                )
+            if hit.value == "emerges" and walker and theirs in _SIDE_OF:
+                position = _SIDED[RelativePosition.CROSSING_FROM_LEFT][_SIDE_OF[theirs]]
             elif hit.value in ("behind", "ahead") and not walker:
                 position = theirs  # behind a car ahead is ahead, behind an oncoming one oncoming
             if position is not None:
@@ -455,22 +431,9 @@ def read_position(cast: Cast, mention: Mention, *, by_another: bool = True) -> G
         if weak and fallback is None:
             fallback = min(weak, key=lambda cue: cue[:2])
         if bare and best is None:
-            side = bare.value
             walker = mention.cls.is_walker or mention.is_prop
-            position = (
-                (
-                    RelativePosition.ROADSIDE_LEFT
-                    if side == "left"
-                    else RelativePosition.ROADSIDE_RIGHT
-                )
-                if walker
-                else (
-                    RelativePosition.ADJACENT_LANE_LEFT
-                    if side == "left"
-                    else RelativePosition.ADJACENT_LANE_RIGHT
-                )
-            )
-            best = (bare.start, 99, position, bare.quote)
+            kind = RelativePosition.ROADSIDE_LEFT if walker else RelativePosition.ADJACENT_LANE_LEFT
+            best = (bare.start, 99, _SIDED[kind][bare.value], bare.quote)
         # The lane the ego moves into ("a car coming up in that lane"): resolved by the ego's
         # own lane change ("moves into the left lane").
         target = rulebook().first(Fact.TARGET_LANE, cast.text, start, end)
