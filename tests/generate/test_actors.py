@@ -175,6 +175,22 @@ def test_occluders_and_props_are_still_misc_entries(
     assert [e.id for e in found.chosen[Component.MISC]] == ["misc.occluder_parked_van"]
 
 
+def test_an_occluder_the_text_puts_in_the_oncoming_lane_drives_there(
+    kb: KnowledgeBase, maps: dict[str, frozenset[str]]
+) -> None:
+    text = (
+        "On a two-way street an oncoming lorry hides a boy who runs out from the left in"
+        " front of the ego."
+    )
+    spec, found = retrieved(kb, maps, text, "a boy")
+    [lorry] = [a for a in spec.actors if a.role is ActorRole.OCCLUDER]
+    assert lorry.start is RelativePosition.ONCOMING
+    [placed] = found.actors
+    assert placed.spawn.id == "spawn.oncoming_lane_ahead"
+    assert not set(placed.behavior.tags) & {"static", "stalled"}
+    assert not any("occluder" in e.tags for e in found.chosen[Component.MISC])
+
+
 def test_a_spec_without_actors_retrieves_as_before(
     kb: KnowledgeBase, maps: dict[str, frozenset[str]]
 ) -> None:

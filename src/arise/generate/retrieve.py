@@ -670,6 +670,18 @@ MAX_ACTORS = 4
 #: Roles whose actor is placed by a misc entry, not a spawn: an occluder stands by the
 #: adversary, an obstacle is a prop.
 MISC_ROLES = frozenset({ActorRole.OCCLUDER, ActorRole.OBSTACLE})
+#: Starts on the carriageway. An occluder the text puts there is traffic (a bus coming the
+#: other way, a truck in the next lane) and is placed like any road user; a misc occluder
+#: stands parked at the kerb, which is not where the text put it.
+ON_ROAD_STARTS = frozenset(
+    {
+        RelativePosition.AHEAD_SAME_LANE,
+        RelativePosition.BEHIND_SAME_LANE,
+        RelativePosition.ADJACENT_LANE_LEFT,
+        RelativePosition.ADJACENT_LANE_RIGHT,
+        RelativePosition.ONCOMING,
+    }
+)
 #: Where an actor starts when its words do not say, by its role.
 ROLE_STARTS: dict[ActorRole, RelativePosition] = {
     ActorRole.LEAD: RelativePosition.AHEAD_SAME_LANE,
@@ -709,9 +721,13 @@ def _actor_start(actor: Actor) -> RelativePosition | None:
 def _own_spawn(actor: Actor) -> bool:
     """Whether the actor is a road user placed by a spawn of its own (not a misc entry;
     the others of a counted adversary take copies of the adversary's)."""
+    by_misc = actor.role in MISC_ROLES and not (
+        actor.role is ActorRole.OCCLUDER and actor.start in ON_ROAD_STARTS
+    )
     return (
         actor.road_user
-        and actor.role not in MISC_ROLES | {ActorRole.ADVERSARY}
+        and not by_misc
+        and actor.role is not ActorRole.ADVERSARY
         and _actor_start(actor) is not None
     )
 
