@@ -59,6 +59,7 @@ DEV_FILES = (
     "variants.jsonl",
     "fresh.jsonl",
     "fresh2.jsonl",
+    "fresh3.jsonl",
 )
 
 

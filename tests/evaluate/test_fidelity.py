@@ -428,6 +428,7 @@ def test_the_dev_sets_load_and_validate() -> None:
         DevSet.VARIANTS: 36,
         DevSet.FRESH: 36,
         DevSet.FRESH2: 36,
+        DevSet.FRESH3: 42,
     }
     assert sum(counts.values()) >= 66
     everything = [item for items in sets.values() for item in items]

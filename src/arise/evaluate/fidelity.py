@@ -91,6 +91,8 @@ class DevSet(StrEnum):
     FRESH = "fresh"
     # a second probe of the same kind, kept unread until a session scores it first
     FRESH2 = "fresh2"
+    # a third probe, kept unread until the lead scores it first
+    FRESH3 = "fresh3"
     # tests/heldapart: measured only, never tuned on (its README states the rule)
     HELDAPART = "heldapart"
 
@@ -103,6 +105,7 @@ DEVSET_FILES: dict[DevSet, str] = {
     DevSet.VARIANTS: "variants.jsonl",
     DevSet.FRESH: "fresh.jsonl",
     DevSet.FRESH2: "fresh2.jsonl",
+    DevSet.FRESH3: "fresh3.jsonl",
 }
 
 
