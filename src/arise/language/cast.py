@@ -566,12 +566,14 @@ def _bare_modifiers() -> frozenset[str]:
 
 #: A pronoun is a phrase of its own: "the AV's right as | it" does not open at "the".
 _PRONOUN = re.compile(r"(?:it|they|them|he|she|him|her)\b", re.I)
+# Pronouns take no article: "on the motorway you ..." opens no phrase at "the".
+_NO_ARTICLE = re.compile(r"(?:it|they|them|he|she|him|her|i|we|you|me|us)\b", re.I)
 
 
 def phrase_start(text: str, start: int) -> int:
     """Where the noun phrase of the noun at `start` begins: the nearest article or number
     at most three words before it ("a parked delivery van"), else the noun itself."""
-    if _PRONOUN.match(text, start):
+    if _NO_ARTICLE.match(text, start):
         return start
     before = text[max(0, start - 40) : start]
     words = list(re.finditer(r"[\w'-]+", before))[-4:]
