@@ -425,6 +425,10 @@ def read_position(cast: Cast, mention: Mention, *, by_another: bool = True) -> G
             # "comes from behind in the left lane", "just ahead of me in the right-hand
             # lane", "behind me, coming from my right": the side tells more than the end.
             cues = [c for c in cues if c[2] not in _ALONG]
+        if bare and cues and all(c[2] in _ALONG for c in cues):
+            # "beside me at left, a little in front": a side said beside an end is the
+            # side's lane (or kerb), as above.
+            cues = []
         for cue in cues:
             if best is None or cue[:2] < best[:2]:
                 best = cue
