@@ -23,6 +23,7 @@ def _ego_words(text: str) -> list[str]:
     [
         ("The test vehicle slows as a bus pulls out.", ["test vehicle"]),
         ("The subject vehicle was stopped when a van rolled back.", ["subject vehicle"]),
+        ("SV slowing for a queue; POV behind it fails to stop.", ["SV"]),
         ("I was driving my car down Elm Road when a bike appeared.", ["I", "my car"]),
         # NHTSA's typology names the ego "Vehicle", with no article.
         ("Vehicle turning right; a cyclist going straight on its right.", ["Vehicle"]),
@@ -164,3 +165,8 @@ def test_a_bare_noun_in_terse_notes_is_the_one_named_before() -> None:
         ("Car", 1),
         ("Car", 1),
     ]
+
+
+def test_a_vehicle_described_in_brackets_is_one_vehicle_of_that_class() -> None:
+    assert _named("POV (grey estate car) from the left lane cuts in front of SV.") == [("Car", 1)]
+    assert _named("The other vehicle (a flatbed truck) reversed into us.") == [("Truck", 1)]

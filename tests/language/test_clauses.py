@@ -45,6 +45,15 @@ def _subject_of(text: str, words: str) -> str | None:
             "pulled out",
             "A van",
         ),
+        # "between X and Y" joins two places, not two clauses
+        (
+            "The ego waits at the lights. A scooter squeezes between the ego and a bus,"
+            " clips the ego's mirror.",
+            "clips",
+            "A scooter",
+        ),
+        # a pronoun after a fronted phrase is still the subject
+        ("On the ring road you change lanes to the right.", "change lanes", "ego"),
     ],
 )
 def test_each_verb_has_the_subject_of_its_clause(text: str, words: str, subject: str) -> None:

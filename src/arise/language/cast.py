@@ -361,6 +361,7 @@ def read_cast(text: str) -> Cast:
         if kind.startswith(("V", "P")) and kind != "noun":
             numbered[kind] = len(found) - 1
     found = _numbered_descriptions(text, found, numbered)
+    found = _bracketed_descriptions(text, found)
     found = _heading_mentions(text, found)
     found = _ego_appositions(text, ego, found)
     return Cast(text, tuple(ego), tuple(found), tuple(skipped))
@@ -450,6 +451,37 @@ def _numbered_descriptions(
         start = first.end + after.start(1)
         end = first.end + after.end(1)
         inner = [m for m in found if m is not mention and m.start >= start and m.start < end]
+        if not inner:
+            continue
+        named = inner[0]
+        merged = replace(
+            mention,
+            cls=named.cls,
+            spans=tuple(sorted({*mention.spans, *named.spans}, key=lambda s: s.start)),
+        )
+        found = [merged if m is mention else m for m in found if m is not named]
+    return found
+
+
+#: A description in brackets right after a road user: "POV (silver sedan)", "the other
+#: car (a grey estate)".
+_BRACKETED = re.compile(r"^\s*\(\s*([^()]{1,60})\)")
+
+
+def _bracketed_descriptions(text: str, found: list[Mention]) -> list[Mention]:
+    """A vehicle described in brackets right after another ("POV (silver sedan)") is that
+    vehicle, of the class the brackets name, not one more actor."""
+    for mention in list(found):
+        if mention not in found or not mention.cls.is_vehicle:
+            continue
+        after = _BRACKETED.match(text[mention.spans[0].end :])
+        if not after:
+            continue
+        start = mention.spans[0].end + after.start(1)
+        end = mention.spans[0].end + after.end(1)
+        inner = [
+            m for m in found if m is not mention and start <= m.start < end and m.cls.is_vehicle
+        ]
         if not inner:
             continue
         named = inner[0]

@@ -28,6 +28,7 @@ _BOUNDARY = re.compile(
     re.I,
 )
 _RELATIVE = frozenset({"which", "that", "who"})
+_BETWEEN = re.compile(r"\bbetween\b(?!.*\band\b)", re.I)
 _SENTENCE_END = frozenset({".", "!", "?", ";"})
 # Words that may come before a clause's subject ("then suddenly the ego ...").
 _LEAD_WORDS = re.compile(
@@ -145,7 +146,10 @@ def read_clauses(cast: Cast) -> list[Clause]:
     spans = _spans(cast)
     cuts: list[tuple[int, int, str]] = [(0, 0, "")]
     for match in _BOUNDARY.finditer(text):
-        cuts.append((match.start(), match.end(), match.group(0).lower()))
+        word = match.group(0).lower()
+        if word == "and" and _BETWEEN.search(text, cuts[-1][1], match.start()):
+            continue  # "between the ego and the van" joins two places, not two clauses
+        cuts.append((match.start(), match.end(), word))
     # A participle right after an actor opens a clause about it ("a car turning left").
     for span, _actor in spans:
         found = _PARTICIPLE.match(text, span.end)

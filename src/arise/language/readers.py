@@ -253,12 +253,14 @@ def _ego_words(cast: Cast) -> list[tuple[int, int]]:
 
 def read_lane_number(cast: Cast, mention: Mention) -> GroundedFact | None:
     """The lane beside the ego from numbered lanes ("V1 in the #1 lane ... V2 in the #2
-    lane"): lanes count from the left, so a higher number than the ego's is on its right."""
+    lane"): lanes count from the left, so a higher number than the ego's is on its right,
+    unless the text counts them from the right."""
     theirs = _lane_number(cast, words_of(cast, mention))
     ours = _lane_number(cast, _ego_words(cast)) if theirs is not None else None
     if theirs is None or ours is None or theirs.value == ours.value:
         return None
-    right = int(theirs.value) > int(ours.value)
+    from_right = rulebook().first(Fact.LANE_ORDER, cast.text) is not None
+    right = (int(theirs.value) > int(ours.value)) != from_right
     return GroundedFact(
         name="spawn_position",
         value=(

@@ -88,6 +88,7 @@ class Fact(StrEnum):
     REQUIREMENT = "requirement"  # a constraint the text states (a RequirementKind)
     HEADING = "heading"  # a compass heading ("northbound", "from south to north")
     LANE_NUMBER = "lane_number"  # the numbered lane an actor is in ("#2 lane", "lane 3")
+    LANE_ORDER = "lane_order"  # lanes numbered from the right: "from_right"
     CURB = "curb"  # the compass side of the street an actor stands at ("the north curb")
     MEASURE = "measure"  # a number with its unit ("17 mph", "30 feet"): the unit
     THERE = "there"  # "from there": the place named just before
