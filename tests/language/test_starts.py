@@ -121,3 +121,13 @@ def test_a_person_who_owns_the_vehicle_is_no_road_user_of_their_own() -> None:
     reading = read_description("Van of one man is standing at left side of road and starts.")
     assert [m.cls.value for m in reading.cast.others] == ["Van"]
     assert reading.facts["spawn_position"].value == "roadside_left"
+
+
+def test_a_reports_other_party_is_its_lowest_numbered_one() -> None:
+    text = (
+        "V1 (the AV) was eastbound behind V3, a tractor hauling hay at about 10 mph. V1 moved"
+        " into the westbound lane to pass. V2, a westbound hatchback, came over the crest and"
+        " V1 returned behind V3."
+    )
+    reading = read_description(text)
+    assert reading.adversary is not None and reading.adversary.quote == "V2"

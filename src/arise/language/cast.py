@@ -463,6 +463,15 @@ def _numbered_descriptions(
     return found
 
 
+def party_number(cast: Cast, mention: Mention) -> int | None:
+    """The number a report gives this road user ("V2", "Party 3"), None if it has none."""
+    for span in mention.spans:
+        numbered = _NUMBERED.fullmatch(cast.text, span.start, span.end)
+        if numbered:
+            return int(numbered.group(1))
+    return None
+
+
 #: A description in brackets right after a road user: "POV (silver sedan)", "the other
 #: car (a grey estate)".
 _BRACKETED = re.compile(r"^\s*\(\s*([^()]{1,60})\)")

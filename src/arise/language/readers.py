@@ -16,6 +16,7 @@ from arise.language.cast import (
     Clause,
     Mention,
     heading_end,
+    party_number,
     phrase_start,
     sentence_end,
 )
@@ -859,7 +860,13 @@ def choose_adversary(cast: Cast, quote: str | None) -> Mention | None:
             continue
         if any(cue_before(Fact.HIDES_BEHIND, cast.text, a, spaced=False) for a, _ in stretches):
             continue
-        playing.append((_meeting_rank(cast, mention, stretches), mention))
+        playing.append(((_meeting_rank(cast, mention, stretches), 0), mention))
+    numbers = {id(m): n for _, m in playing if (n := party_number(cast, m)) is not None}
+    if numbers:
+        # A report's other party is its lowest-numbered one ("V2", "Party 2"), before a
+        # truck it only mentions.
+        first = min(numbers.values())
+        playing = [((rank[0], 0 if numbers.get(id(m)) == first else 1), m) for rank, m in playing]
     if playing:
         return min(playing, key=lambda ranked: ranked[0])[1]
     return road_users[0] if road_users else None
