@@ -191,6 +191,21 @@ def test_an_occluder_the_text_puts_in_the_oncoming_lane_drives_there(
     assert not any("occluder" in e.tags for e in found.chosen[Component.MISC])
 
 
+def test_oncoming_traffic_at_a_junction_gets_the_far_approach_not_the_adversarys_route(
+    kb: KnowledgeBase, maps: dict[str, frozenset[str]]
+) -> None:
+    text = (
+        "At the crossroads the ego turns left on green. A pickup coming the other way goes"
+        " straight on, and an oncoming taxi waits behind it."
+    )
+    _, found = retrieved(kb, maps, text, "A pickup")
+    [adversary_spawn] = found.chosen[Component.SPAWN]
+    assert adversary_spawn.id == "spawn.junction_conflict_route"
+    [taxi] = found.actors
+    assert taxi.spawn.id == "spawn.junction_oncoming_approach"
+    assert taxi.spawn.actor == "actor2"
+
+
 def test_a_spec_without_actors_retrieves_as_before(
     kb: KnowledgeBase, maps: dict[str, frozenset[str]]
 ) -> None:

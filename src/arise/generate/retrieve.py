@@ -62,6 +62,9 @@ EGO_STOPPED_TAG = "ego_stopped"
 #: A geometry whose ego takes any route through a junction: not for an ego said to go
 #: straight, which it may turn off.
 ANY_ROUTE_TAG = "any_route"
+#: A spawn for the other road users only (traffic on a junction's far approach): the
+#: adversary's start at a junction comes with its conflict route.
+TRAFFIC_ONLY_TAG = "traffic_only"
 MANEUVER_TAGS: dict[EgoManeuver, tuple[str, ...]] = {
     EgoManeuver.TURN_LEFT: ("left_turn", "unprotected_left_turn"),
     EgoManeuver.TURN_RIGHT: ("right_turn",),
@@ -484,7 +487,11 @@ def retrieve(
             retriever,
             query(f"{spec.spawn} {spec.spawn_position.value}"),
             Component.SPAWN,
-            [e for e in kb.of(Component.SPAWN) if e.suits(adversary) and placeable(e)],
+            [
+                e
+                for e in kb.of(Component.SPAWN)
+                if e.suits(adversary) and placeable(e) and TRAFFIC_ONLY_TAG not in e.tags
+            ],
         ),
         lambda e: (
             len(spawn_tags & set(e.tags))
