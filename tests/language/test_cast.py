@@ -170,3 +170,10 @@ def test_a_bare_noun_in_terse_notes_is_the_one_named_before() -> None:
 def test_a_vehicle_described_in_brackets_is_one_vehicle_of_that_class() -> None:
     assert _named("POV (grey estate car) from the left lane cuts in front of SV.") == [("Car", 1)]
     assert _named("The other vehicle (a flatbed truck) reversed into us.") == [("Truck", 1)]
+
+
+def test_a_typology_heading_ended_by_a_full_stop_names_the_same_car() -> None:
+    text = "Lead vehicle decelerating. SV follows a minicab on a wet bypass when it brakes hard."
+    assert _named(text) == [("Car", 1)]
+    # a short first sentence that names the ego is no heading
+    assert _named("SV turns left. A van waits opposite.") == [("Van", 1)]

@@ -506,12 +506,20 @@ def _bracketed_descriptions(text: str, found: list[Mention]) -> list[Mention]:
 #: A typology heading before the text ("Lead vehicle stopped: ...", "Pedalcyclist crossing,
 #: non-junction: ..."): a label of the scene, not a sentence.
 _HEADING = re.compile(r"^[^.:;]{3,60}:\s")
+#: The same ended by a full stop ("Lead vehicle stopped. SV travels ..."): a short first
+#: sentence in the typology's words, with no article and no name of the ego.
+_TERSE_HEADING = re.compile(
+    r"^(?![^.]*\b(?:a|an|the|my|our|its|sv|av|ego|v1)\b)"
+    r"(?=[^.]*\b(?:vehicles?|pedestrian|pedalcyclist|opposite direction|same direction"
+    r"|crossing paths|control loss|changing lanes)\b)[A-Z][\w ,/-]{3,60}\.\s",
+    re.I,
+)
 
 
 def heading_end(text: str) -> int:
     """Where a typology heading ("Stationary-lead class: ...") ends, 0 without one: it names
     the kind of crash, not what this ego does."""
-    heading = _HEADING.match(text)
+    heading = _HEADING.match(text) or _TERSE_HEADING.match(text)
     return heading.end() if heading else 0
 
 
