@@ -134,7 +134,31 @@ def words_of(cast: Cast, mention: Mention) -> list[tuple[int, int]]:
             and _PRONOUN_OPENS.match(text, clause.start)
         ):
             stretches.append((clause.start, clause.end))
+    # "On the left a van pulls out", "Ahead on the kerb side a bus has pulled in": a place
+    # said before the subject it opens the clause with is about that subject.
+    for clause in cast.clauses:
+        if clause.subject is not mention or not clause.explicit or clause.inverted:
+            continue
+        named = [s.start for s in mention.spans if clause.start <= s.start < clause.end]
+        if not named:
+            continue
+        opened = phrase_start(text, named[0])
+        fronted = text[clause.start : opened]
+        if (
+            _FRONTED_PLACE.match(fronted)
+            and len(fronted.split()) <= 8
+            and not any(clause.start <= s.start < opened for m in cast.others for s in m.spans)
+        ):
+            stretches.append((clause.start, opened))
     return stretches
+
+
+#: A place phrase that opens a clause before its subject: a preposition, no verb.
+_FRONTED_PLACE = re.compile(
+    r"\s*(?:just\s+|further\s+|up\s+|then\s+)?(?:ahead\s+)?"
+    r"(?:on|in|at|to|off|beside|alongside|across)\s(?![^,]*\b\w+(?:ing|ed)\b)[^,]*$",
+    re.I,
+)
 
 
 _PRONOUN_OPENS = re.compile(r"\s*(?:then\s+|suddenly\s+)?(?:it|he|she|they)\b", re.I)
@@ -400,7 +424,9 @@ def read_position(cast: Cast, mention: Mention, *, by_another: bool = True) -> G
         return told
     best: tuple[int, int, RelativePosition, str] | None = None
     fallback: tuple[int, int, RelativePosition, str] | None = None  # from a weak rule
-    for start, end in words_of(cast, mention):
+    stretches = words_of(cast, mention)
+    side_said = any(rulebook().first(Fact.BARE_SIDE, cast.text, a, b) for a, b in stretches)
+    for start, end in stretches:
         # A rule's `unless` may see a little past the stretch ("from behind | a parked
         # van"); the cue itself must lie inside it. The first hit of each position counts.
         # "on the right"/"on its left" alone: a lane for a vehicle, the roadside for a walker.
@@ -428,7 +454,7 @@ def read_position(cast: Cast, mention: Mention, *, by_another: bool = True) -> G
             # "comes from behind in the left lane", "just ahead of me in the right-hand
             # lane", "behind me, coming from my right": the side tells more than the end.
             cues = [c for c in cues if c[2] not in _ALONG]
-        if bare and cues and all(c[2] in _ALONG for c in cues):
+        if side_said and cues and all(c[2] in _ALONG for c in cues):
             # "beside me at left, a little in front": a side said beside an end is the
             # side's lane (or kerb), as above.
             cues = []
