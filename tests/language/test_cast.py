@@ -177,3 +177,10 @@ def test_a_typology_heading_ended_by_a_full_stop_names_the_same_car() -> None:
     assert _named(text) == [("Car", 1)]
     # a short first sentence that names the ego is no heading
     assert _named("SV turns left. A van waits opposite.") == [("Van", 1)]
+
+
+def test_a_road_users_possessive_names_it() -> None:
+    text = "A horsebox waits at the lights. A jogger runs past the horsebox's tailgate."
+    cast = parse(text)
+    [horsebox] = [m for m in cast.others if m.cls.value == "Truck"]
+    assert [text[s.start : s.end] for s in horsebox.spans] == ["horsebox", "horsebox's"]

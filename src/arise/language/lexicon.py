@@ -79,6 +79,9 @@ def slot_word(word: str) -> str:
     return lexicon().slot_words.get(slot_key(word), word.lower())
 
 
+_WORD_END = r"(?![\w'])"
+
+
 def _noun_pattern(nouns: tuple[tuple[str, tuple[str, ...]], ...]) -> re.Pattern[str]:
     """One regex for every noun, the longest phrase first whatever its class ("box truck"
     is a Truck, not a Box); each phrase's group is named CLASS_N (see `noun_class`)."""
@@ -87,6 +90,8 @@ def _noun_pattern(nouns: tuple[tuple[str, tuple[str, ...]], ...]) -> re.Pattern[
     groups = []
     for index, (phrase, cls) in enumerate(phrases):
         inner = compile_pattern("@x", {"x": (phrase,)}).pattern
+        # with its possessive: "the bus's nose" names the bus
+        inner = inner.removesuffix(_WORD_END) + rf"(?:'s\b|{_WORD_END})"
         groups.append(f"(?P<{cls}_{index}>{inner})")
     return re.compile("|".join(groups), re.I)
 

@@ -425,7 +425,10 @@ def read_position(cast: Cast, mention: Mention, *, by_another: bool = True) -> G
     best: tuple[int, int, RelativePosition, str] | None = None
     fallback: tuple[int, int, RelativePosition, str] | None = None  # from a weak rule
     stretches = words_of(cast, mention)
-    side_said = any(rulebook().first(Fact.BARE_SIDE, cast.text, a, b) for a, b in stretches)
+    side_said = next(
+        (hit for a, b in stretches if (hit := rulebook().first(Fact.BARE_SIDE, cast.text, a, b))),
+        None,
+    )
     for start, end in stretches:
         # A rule's `unless` may see a little past the stretch ("from behind | a parked
         # van"); the cue itself must lie inside it. The first hit of each position counts.
@@ -444,10 +447,11 @@ def read_position(cast: Cast, mention: Mention, *, by_another: bool = True) -> G
             seen_values.add((hit.value, hit.rule.weak))
             if hit.end <= end:
                 cue = (hit.start, hit.order, RelativePosition(hit.value), hit.quote)
-                if hit.rule.side_assumed and bare and cue[2] in _SIDED:
+                side = bare or side_said
+                if hit.rule.side_assumed and side and cue[2] in _SIDED:
                     # "at the kerb ... on my left": the side said wins over the usual one.
-                    said = _SIDED[cue[2]][bare.value]
-                    cue = (cue[0], cue[1], said, f"{cue[3]} ... {bare.quote}")
+                    said = _SIDED[cue[2]][side.value]
+                    cue = (cue[0], cue[1], said, f"{cue[3]} ... {side.quote}")
                 (weak if hit.rule.weak else cues).append(cue)
         sided = [c for c in cues if c[2] in _SIDED]
         if sided and any(c[2] in _ALONG for c in cues):
