@@ -883,7 +883,7 @@ def choose_adversary(cast: Cast, quote: str | None) -> Mention | None:
             if named:
                 return named[0]
     road_users = [m for m in cast.others if adversary_type_of(m.cls) is not None]
-    playing: list[tuple[int, Mention]] = []
+    playing: list[tuple[tuple[int, int], Mention]] = []
     for mention in road_users:
         stretches = words_of(cast, mention)
         if any(rulebook().first(Fact.BACKGROUND, cast.text, a, b) for a, b in stretches):
