@@ -462,6 +462,10 @@ def read_position(cast: Cast, mention: Mention, *, by_another: bool = True) -> G
             # "beside me at left, a little in front": a side said beside an end is the
             # side's lane (or kerb), as above.
             cues = []
+        there = _from_there(cast, mention) if cues else None
+        if there and there[2] in _SIDED and all(c[2] in _ALONG for c in cues):
+            # "the lane on the right ... a motorbike comes there from behind": that lane.
+            cues = [there]
         for cue in cues:
             if best is None or cue[:2] < best[:2]:
                 best = cue
