@@ -10,6 +10,7 @@ measures the same and prints the table).
 
 from __future__ import annotations
 
+import re
 from collections.abc import Iterator
 
 import pytest
@@ -26,17 +27,34 @@ from benchmarks.conflict_reach import (
 
 from arise.drive.metrics_track import Track
 from arise.kb.loader import load_kb
+from arise.kb.schema import Entry
 from arise.validate import WorkerPool
 from arise.validate.types import AgentTrace, TracePoint
 
 #: The floor agent never brakes: every behavior must reach it at both speeds. The
 #: cautious one brakes for what is in front of it; over all runs, this share must reach.
 MIN_SHARE = 0.9
+#: Each falsification lever at the end where the adversary behaves as before it had one
+#: (a fixed start factor of 3, a commit 4 m out, a pause on the anchor).
+LEVERS_AT_REACH_END = {
+    "OPT_ADV_START_FACTOR": "3",
+    "OPT_ADV_COMMIT": "4",
+    "OPT_ADV_PAUSE_SHORT": "0",
+    "OPT_ADV_RESUME": "0",
+}
+
+
+def at_reach_end(entry: Entry) -> Entry:
+    """The entry with its levers fixed at their reach end."""
+    snippet = entry.snippet
+    for name, value in LEVERS_AT_REACH_END.items():
+        snippet = re.sub(rf"^param {name} = .*$", f"param {name} = {value}", snippet, flags=re.M)
+    return entry.model_copy(update={"snippet": snippet})
 
 
 @pytest.fixture(scope="module")
 def reaches() -> Iterator[list[Reach]]:
-    entries = list(load_kb(builtin=True))
+    entries = [at_reach_end(entry) for entry in load_kb(builtin=True)]
     todo, missing = cases(entries, None, ("blind", "cautious"))
     assert not missing, f"no composition for {missing}"
     with WorkerPool(size=2) as pool:
@@ -72,6 +90,15 @@ def test_only_declared_exceptions_are_left_out() -> None:
     left_out = {e.id for e in behaviors} - kept
     assert left_out == {e.id for e in behaviors if set(e.tags) & NO_CONFLICT_TAGS}
     assert len(kept) >= 40  # the exceptions stay few
+
+
+def test_levers_are_held_at_their_reach_end() -> None:
+    kb = load_kb(builtin=True)
+    held = at_reach_end(kb.get("behavior.yield_then_go")).snippet
+    assert "param OPT_ADV_START_FACTOR = 3\n" in held
+    assert "OPT_ADV_START_FACTOR = Range(" in kb.get("behavior.yield_then_go").snippet
+    levers = {p for e in kb for p in e.params if p in LEVERS_AT_REACH_END}
+    assert levers == set(LEVERS_AT_REACH_END)  # each one is still some entry's
 
 
 def test_the_ego_speed_is_fixed_in_the_script() -> None:
