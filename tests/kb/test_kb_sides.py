@@ -77,3 +77,34 @@ def test_a_sided_geometry_starts_its_adversary_on_that_side(
         assert relation.direction == direction, where
         assert relation.side == side if side else relation.ahead > 0, where
         assert adversary_turn(adversary) is geometry.adversary_maneuver, where
+
+
+#: Kerb entries on a highway, whose far carriageway Scenic gives a group right edge on the
+#: wrong side: a parked car must still stand on the ego's right, whichever way it drives.
+KERB_ON_A_HIGHWAY = [
+    ("spawn.parked_right_curb_ahead", "behavior.stalled"),
+    ("spawn.roadside_right_near", "behavior.cross_and_stop"),
+]
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize(("spawn_id", "behavior_id"), KERB_ON_A_HIGHWAY)
+def test_a_kerb_spawn_stands_on_the_right_on_either_carriageway(
+    spawn_id: str, behavior_id: str, validator_pool: WorkerPool
+) -> None:
+    kb = load_kb(builtin=True)
+    entries = [kb.get("geometry.highway_slow_lane"), kb.get(spawn_id), kb.get(behavior_id)]
+    cls = "Pedestrian" if "Pedestrian" in kb.get(behavior_id).adversaries else "Car"
+    script = compose(entries, cls, "arise_highway")
+    sides = set()
+    for seed in (0, 1, 2, 3, 4, 5):
+        result = check_text(script, CheckOptions(seed=seed, timeout=60), pool=validator_pool)
+        assert result.ok and result.simulation is not None, result.diagnostic
+        agents = result.simulation.agents
+        ego = next(a for a in agents if a.is_ego)
+        adversary = find_adversary(agents)
+        assert adversary is not None
+        relation = start_relation(ego, adversary)
+        assert relation is not None
+        sides.add(relation.side)
+    assert sides == {"right"}
