@@ -206,6 +206,22 @@ def test_oncoming_traffic_at_a_junction_gets_the_far_approach_not_the_adversarys
     assert taxi.spawn.actor == "actor2"
 
 
+def test_no_misc_entry_puts_an_actor_where_the_text_does_not(
+    kb: KnowledgeBase, maps: dict[str, frozenset[str]]
+) -> None:
+    text = (
+        "At a T-junction the ego turns left out of the side road; a van comes from the right,"
+        " and a cyclist rides toward the ego on the main road."
+    )
+    spec, found = retrieved(kb, maps, text, "a van")
+    [cyclist] = spec.actors
+    assert cyclist.start is RelativePosition.ONCOMING
+    # no spawn fits at a T-junction's stem, and the only misc cyclist rides ahead the same way
+    assert found.actors == []
+    assert "misc.cyclist_riding_ahead" not in [e.id for e in found.chosen[Component.MISC]]
+    assert any("left out" in note for note in found.notes)
+
+
 def test_a_spec_without_actors_retrieves_as_before(
     kb: KnowledgeBase, maps: dict[str, frozenset[str]]
 ) -> None:

@@ -648,7 +648,15 @@ def _add_extras(
         # Only an entry that places the class the cast gave this participant: a bus stop
         # is a prop, not a bus; nothing is added for a thing no entry places.
         named = {actor.scenic_class}
-        same_kind = [e for e in misc_pool if _created_classes(e) and _created_classes(e) <= named]
+        same_kind = [
+            e
+            for e in misc_pool
+            if _created_classes(e)
+            and _created_classes(e) <= named
+            # nor one that puts it where the text does not: an oncoming cyclist is no
+            # cyclist riding ahead
+            and (actor.start is None or approach_fit(actor.start, e.approach) <= Fit.UNSPECIFIC)
+        ]
         picked = _ranked(retriever, participant, Component.MISC, same_kind)[:1]
         if not picked:
             result.notes.append(f"misc: no entry places {participant!r}; left out")

@@ -46,7 +46,9 @@ PLACEHOLDER_PATTERN = re.compile(r"\{\{([A-Z][A-Z0-9_]*)\}\}")
 #: it puts the adversary on that route, so the geometry decides the adversary's side.
 CONFLICT_ROUTE = "conflictManeuver"
 #: Components that may say where the adversary comes from and which way it goes.
-SIDED_COMPONENTS = frozenset({Component.GEOMETRY, Component.SPAWN, Component.BEHAVIOR})
+SIDED_COMPONENTS = frozenset(
+    {Component.GEOMETRY, Component.SPAWN, Component.BEHAVIOR, Component.MISC}
+)
 
 
 class Entry(BaseModel):
@@ -85,7 +87,8 @@ class Entry(BaseModel):
     approach: Approach | None = Field(
         default=None,
         description="where the adversary comes from, seen from the ego (geometry: the start "
-        "of its conflict route; spawn: where it places the adversary); None: not fixed",
+        "of its conflict route; spawn: where it places the adversary; misc: where its road "
+        "user stands); None: not fixed",
     )
     adversary_maneuver: AdversaryManeuver | None = Field(
         default=None,
@@ -189,6 +192,8 @@ class Entry(BaseModel):
         stated = self.approach is not None or self.adversary_maneuver is not None
         if stated and self.component not in SIDED_COMPONENTS:
             raise ValueError(f"a {self.component.value} entry cannot state approach or maneuver")
+        if self.component is Component.MISC and self.adversary_maneuver is not None:
+            raise ValueError("a misc entry moves no adversary: drop its adversary_maneuver")
         if self.component is Component.BEHAVIOR and self.approach is not None:
             raise ValueError("a behavior does not place the adversary: drop its approach")
         if stated and self.component is Component.GEOMETRY and CONFLICT_ROUTE not in self.defines:
