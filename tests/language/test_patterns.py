@@ -65,3 +65,16 @@ def test_a_plain_the_before_a_possessive_is_refused() -> None:
     with pytest.raises(RuleError, match="the\\?"):
         compile_pattern("into the ego's|its lane", lexicon().classes)
     assert compile_pattern("into the? ego's|its lane", lexicon().classes).search("into its lane")
+
+
+def test_a_verb_with_a_plus_matches_every_form_of_it() -> None:
+    from arise.language.patterns import compile_pattern, verb_forms
+
+    assert verb_forms("cross") == ("cross", "crosses", "crossed", "crossing")
+    assert verb_forms("move") == ("move", "moves", "moved", "moving")
+    assert verb_forms("carry") == ("carry", "carries", "carried", "carrying")
+    assert verb_forms("see") == ("see", "sees", "seed", "seeing")
+    pattern = compile_pattern("ride+ toward us", {}, {"ride": ("rode", "ridden")})
+    for text in ("rides toward us", "rode toward us", "riding toward us", "ride toward us"):
+        assert pattern.search(text), text
+    assert not pattern.search("rider toward us")

@@ -29,6 +29,8 @@ class Lexicon:
     not_an_actor_after: tuple[str, ...]
     makes: tuple[str, ...]
     colours: tuple[str, ...]
+    #: A verb -> its irregular forms ("ride" -> "rode", "ridden"), for ``ride+`` in a pattern.
+    verbs: dict[str, tuple[str, ...]]
     #: Every noun, one named group per class (see `_noun_pattern`).
     noun_pattern: re.Pattern[str]
 
@@ -61,6 +63,10 @@ def lexicon() -> Lexicon:
         not_an_actor_after=_strings(data.get("not_an_actor_after", []), "not_an_actor_after"),
         makes=_strings(data["makes"], "makes"),
         colours=_strings(data["colours"], "colours"),
+        verbs={
+            verb.lower(): _strings(forms, f"verbs.{verb}")
+            for verb, forms in (data.get("verbs") or {}).items()
+        },
         noun_pattern=_noun_pattern(nouns),
     )
 

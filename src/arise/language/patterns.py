@@ -5,6 +5,8 @@ A pattern is words separated by spaces, matched as whole words, case aside:
 - ``oncoming``: the word itself; ``left-hand`` also matches "left hand" and "lefthand", and words
   apart match words joined by a hyphen (``right front`` matches "right-front");
 - ``overtak*``: any word that starts so ("overtakes", "overtaking");
+- ``ride+``: every form of the verb ("ride", "rides", "rode", "ridden", "riding"): the
+  regular ones are made here, the irregular ones come from the lexicon's ``verbs``;
 - ``left|right``: one of these words;
 - ``the?``: the word, or nothing;
 - ``~``: any one word; ``~?``: any one word, or nothing;
@@ -35,24 +37,47 @@ from arise.language.errors import RuleError
 _GAP = r"(?:\s*[,:]\s*|\s*->\s*|\s*@\s*|[\s()/-]+)"
 #: `...`: up to eight words, within the sentence.
 _SKIP = r"(?:[\w'-]+(?:\s*,\s*|\s+)){0,8}?"  # no hyphen between: one way to split
-_WORD = re.compile(r"^[a-z0-9'][a-z0-9'-]*\*?$")
+_WORD = re.compile(r"^[a-z0-9'][a-z0-9'-]*[*+]?$")
 #: `#`: a number, with a unit joined to it or not ("20", "2.5", "20m").
 _NUMBER = r"\d+(?:\.\d+)?[a-z]*"
 
 
-def _word(item: str) -> str:
-    """One word of a pattern as a regex: hyphens optional, a trailing * a prefix."""
-    prefix = item.endswith("*")
-    core = item[:-1] if prefix else item
+def _word(item: str, verbs: Mapping[str, tuple[str, ...]] | None = None) -> str:
+    """One word of a pattern as a regex: hyphens optional, a trailing * a prefix, a
+    trailing + every form of a verb."""
     if not _WORD.match(item):
         raise RuleError(f"pattern word {item!r}: use letters, digits, ' and -")
+    if item.endswith("+"):
+        forms = verb_forms(item[:-1], (verbs or {}).get(item[:-1], ()))
+        return "(?:" + "|".join(_word(form) for form in forms) + ")"
+    prefix = item.endswith("*")
+    core = item[:-1] if prefix else item
     parts = [re.escape(part) for part in core.split("-")]
     body = r"[- ]?".join(parts)
     return rf"{body}[\w'-]*" if prefix else body
 
 
-def _alternatives(words: list[str]) -> str:
-    return "(?:" + "|".join(_word(word) for word in words) + ")"
+_SIBILANT = re.compile(r"(?:s|x|z|ch|sh|o)$")
+_CONSONANT_Y = re.compile(r"[^aeiou]y$")
+
+
+def verb_forms(verb: str, irregular: tuple[str, ...] = ()) -> tuple[str, ...]:
+    """A verb's forms: the base, -s, -ed and -ing made by the regular rules, and the
+    irregular forms given (a past, a participle, or a doubled "stopped", "stopping")."""
+    if _CONSONANT_Y.search(verb):
+        third, past, ing = verb[:-1] + "ies", verb[:-1] + "ied", verb + "ing"
+    elif verb.endswith("ee"):
+        third, past, ing = verb + "s", verb + "d", verb + "ing"
+    elif verb.endswith("e"):
+        third, past, ing = verb + "s", verb + "d", verb[:-1] + "ing"
+    else:
+        third = verb + ("es" if _SIBILANT.search(verb) else "s")
+        past, ing = verb + "ed", verb + "ing"
+    return tuple(dict.fromkeys((verb, third, past, ing, *irregular)))
+
+
+def _alternatives(words: list[str], verbs: Mapping[str, tuple[str, ...]] | None = None) -> str:
+    return "(?:" + "|".join(_word(word, verbs) for word in words) + ")"
 
 
 _POSSESSIVES = frozenset({"its", "my", "our", "your", "his", "her", "their"})
@@ -66,8 +91,13 @@ def _check_determiners(pattern: str, items: list[str]) -> None:
             raise RuleError(f"pattern {pattern!r}: 'the' before {following!r}; write 'the?'")
 
 
-def compile_pattern(pattern: str, classes: Mapping[str, tuple[str, ...]]) -> re.Pattern[str]:
-    """`pattern` as a case-insensitive regex over text; raises RuleError when malformed."""
+def compile_pattern(
+    pattern: str,
+    classes: Mapping[str, tuple[str, ...]],
+    verbs: Mapping[str, tuple[str, ...]] | None = None,
+) -> re.Pattern[str]:
+    """`pattern` as a case-insensitive regex over text; raises RuleError when malformed.
+    verbs: the irregular forms of verbs (`ride` -> rode, ridden) for words like ``ride+``."""
     items = pattern.strip().lower().split()
     if not items:
         raise RuleError("an empty pattern")
@@ -75,7 +105,7 @@ def compile_pattern(pattern: str, classes: Mapping[str, tuple[str, ...]]) -> re.
     pieces: list[tuple[str, bool]] = []
     not_next = ""
     if items[-1].startswith("!") and len(items) > 1:
-        not_next = f"(?!{_GAP}{_alternatives(items.pop()[1:].split('|'))}(?![\\w']))"
+        not_next = f"(?!{_GAP}{_alternatives(items.pop()[1:].split('|'), verbs)}(?![\\w']))"
     for item in items:
         optional = item.endswith("?") and len(item) > 1
         core = item[:-1] if optional else item
@@ -97,7 +127,7 @@ def compile_pattern(pattern: str, classes: Mapping[str, tuple[str, ...]]) -> re.
                 raise RuleError(f"pattern {pattern!r}: no lexicon class {name!r}")
             piece = f"(?:{_phrases(classes[name])})"
         else:
-            piece = _alternatives(core.split("|"))
+            piece = _alternatives(core.split("|"), verbs)
         pieces.append((piece, optional))
     if all(optional for _, optional in pieces):
         raise RuleError(f"pattern {pattern!r}: every word is optional")

@@ -320,12 +320,12 @@ def rulebook() -> RuleBook:
                 raise RuleError(f"{name}: rule id {rule.id} is used twice")
             seen.add(rule.id)
             _check_value(rule, name)
-            classes = lexicon().classes
+            classes, verbs = lexicon().classes, lexicon().verbs
             order = counts.get(rule.fact, 0)
             counts[rule.fact] = order + 1
             try:
-                when = tuple(compile_pattern(p, classes) for p in rule.when)
-                unless = tuple(compile_pattern(p, classes) for p in rule.unless)
+                when = tuple(compile_pattern(p, classes, verbs) for p in rule.when)
+                unless = tuple(compile_pattern(p, classes, verbs) for p in rule.unless)
             except RuleError as error:
                 raise RuleError(f"{name}: rule {rule.id}: {error}") from error
             compiled.append(CompiledRule(rule=rule, when=when, unless=unless, order=order))
