@@ -131,3 +131,17 @@ def test_a_reports_other_party_is_its_lowest_numbered_one() -> None:
     )
     reading = read_description(text)
     assert reading.adversary is not None and reading.adversary.quote == "V2"
+
+
+def test_a_lead_ahead_of_an_ego_held_at_a_red_waits_too() -> None:
+    from arise.language.actors import read_actors
+    from arise.vocabulary import ActorRole
+
+    text = (
+        "The ego sat at the red light behind a campervan when a taxi ran into the back of the ego."
+    )
+    [campervan] = [a for a in read_actors(read_description(text)) if a.scenic_class == "Van"]
+    assert campervan.role is ActorRole.STOPPED and campervan.stationary
+    moving = "The ego follows a campervan on the bypass when a taxi cuts in."
+    [lead] = [a for a in read_actors(read_description(moving)) if a.scenic_class == "Van"]
+    assert lead.role is not ActorRole.STOPPED

@@ -9,7 +9,7 @@ The result is this layer's own `CastActor`; generate builds the spec's Actor fro
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 from arise.language.cast import Cast, Mention
 from arise.language.readers import (
@@ -120,6 +120,15 @@ def read_actor(cast: Cast, mention: Mention) -> CastActor:
     )
 
 
+def _queued_ahead(cast: Cast, mention: Mention, actor: CastActor) -> bool:
+    """A lead in the ego's lane whose own words do not move it, ahead of an ego held still."""
+    return (
+        actor.role is ActorRole.LEAD
+        and actor.start is RelativePosition.AHEAD_SAME_LANE
+        and not any(moves(cast.text, a, b) for a, b in words_of(cast, mention))
+    )
+
+
 def read_actors(reading: Reading) -> list[CastActor]:
     """One actor per thing the description names other than the ego and the adversary, in
     the order of the spec's participants; then, when the text names the adversary with a
@@ -127,9 +136,14 @@ def read_actors(reading: Reading) -> list[CastActor]:
     cast = reading.cast
     found: list[CastActor] = []
     adversary = reading.adversary
+    held = "ego_stopped" in reading.facts
     for mention in cast.others:
         if mention is not adversary:
-            found.append(read_actor(cast, mention))
+            actor = read_actor(cast, mention)
+            if held and _queued_ahead(cast, mention, actor):
+                # "second in the queue behind a hatchback" at a red: it waits there too
+                actor = replace(actor, role=ActorRole.STOPPED, stationary=True)
+            found.append(actor)
     if adversary is not None and adversary.count > 1:
         found.append(
             CastActor(
