@@ -184,3 +184,10 @@ def test_a_road_users_possessive_names_it() -> None:
     cast = parse(text)
     [horsebox] = [m for m in cast.others if m.cls.value == "Truck"]
     assert [text[s.start : s.end] for s in horsebox.spans] == ["horsebox", "horsebox's"]
+
+
+def test_a_principal_other_vehicle_is_one_more_vehicle_in_terse_notes() -> None:
+    assert _named("Box truck stopped in LT lane. POV pickup runs red from L.") == [
+        ("Truck", 1),
+        ("Truck", 1),
+    ]
