@@ -11,14 +11,20 @@ import math
 
 import pytest
 
-from arise.generate.conformity import find_adversary, start_relation, travel_heading, wrap
+from arise.generate.conformity import (
+    StartRelation,
+    find_adversary,
+    start_relation,
+    travel_heading,
+    wrap,
+)
 from arise.kb.compose import compose, pick_map
 from arise.kb.loader import load_kb
 from arise.kb.schema import Component
 from arise.maps.registry import MapRegistry
 from arise.validate import CheckOptions, WorkerPool, check_text
 from arise.validate.types import AgentTrace
-from arise.vocabulary import AdversaryManeuver, Approach
+from arise.vocabulary import ActorClass, AdversaryManeuver, Approach
 
 SEEDS = (1, 2, 3)
 TURN_DEGREES = 45.0
@@ -43,6 +49,19 @@ def adversary_turn(adversary: AgentTrace) -> AdversaryManeuver | None:
     return AdversaryManeuver.STRAIGHT
 
 
+def _run(script: str, seed: int, pool: WorkerPool) -> tuple[AgentTrace, StartRelation]:
+    """Validate `script` with `seed`; the adversary and where it started, seen from the ego."""
+    result = check_text(script, CheckOptions(seed=seed, timeout=60), pool=pool)
+    assert result.ok and result.simulation is not None, result.diagnostic
+    agents = result.simulation.agents
+    ego = next(a for a in agents if a.is_ego)
+    adversary = find_adversary(agents)
+    assert adversary is not None
+    relation = start_relation(ego, adversary)
+    assert relation is not None
+    return adversary, relation
+
+
 def test_the_one_sided_geometries_cover_left_right_and_oncoming() -> None:
     kb = load_kb(builtin=True)
     sides = {e.approach for e in kb.of(Component.GEOMETRY) if e.approach is not None}
@@ -65,14 +84,7 @@ def test_a_sided_geometry_starts_its_adversary_on_that_side(
     assert geometry.approach is not None
     side, direction = EXPECTED[geometry.approach]
     for seed in SEEDS:
-        result = check_text(script, CheckOptions(seed=seed, timeout=60), pool=validator_pool)
-        assert result.ok and result.simulation is not None, result.diagnostic
-        agents = result.simulation.agents
-        ego = next(a for a in agents if a.is_ego)
-        adversary = find_adversary(agents)
-        assert adversary is not None
-        relation = start_relation(ego, adversary)
-        assert relation is not None
+        adversary, relation = _run(script, seed, validator_pool)
         where = (seed, relation.describe())
         assert relation.direction == direction, where
         assert relation.side == side if side else relation.ahead > 0, where
@@ -94,17 +106,8 @@ def test_a_kerb_spawn_stands_on_the_right_on_either_carriageway(
 ) -> None:
     kb = load_kb(builtin=True)
     entries = [kb.get("geometry.highway_slow_lane"), kb.get(spawn_id), kb.get(behavior_id)]
-    cls = "Pedestrian" if "Pedestrian" in kb.get(behavior_id).adversaries else "Car"
+    walker = ActorClass.PEDESTRIAN in kb.get(behavior_id).adversaries
+    cls = ActorClass.PEDESTRIAN if walker else ActorClass.CAR
     script = compose(entries, cls, "arise_highway")
-    sides = set()
-    for seed in (0, 1, 2, 3, 4, 5):
-        result = check_text(script, CheckOptions(seed=seed, timeout=60), pool=validator_pool)
-        assert result.ok and result.simulation is not None, result.diagnostic
-        agents = result.simulation.agents
-        ego = next(a for a in agents if a.is_ego)
-        adversary = find_adversary(agents)
-        assert adversary is not None
-        relation = start_relation(ego, adversary)
-        assert relation is not None
-        sides.add(relation.side)
+    sides = {_run(script, seed, validator_pool)[1].side for seed in (0, 1, 2, 3, 4, 5)}
     assert sides == {"right"}

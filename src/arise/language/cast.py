@@ -448,19 +448,31 @@ def _numbered_descriptions(
         after = _APPOSITION.match(text[first.end :])
         if not after:
             continue
-        start = first.end + after.start(1)
-        end = first.end + after.end(1)
-        inner = [m for m in found if m is not mention and m.start >= start and m.start < end]
-        if not inner:
-            continue
-        named = inner[0]
-        merged = replace(
-            mention,
-            cls=named.cls,
-            spans=tuple(sorted({*mention.spans, *named.spans}, key=lambda s: s.start)),
+        found = _fold_described(
+            found, mention, first.end + after.start(1), first.end + after.end(1)
         )
-        found = [merged if m is mention else m for m in found if m is not named]
     return found
+
+
+def _fold_described(
+    found: list[Mention], mention: Mention, start: int, end: int, *, vehicles: bool = False
+) -> list[Mention]:
+    """`mention` described by the first thing named in text[start:end] (a vehicle, if
+    `vehicles`): that thing folded into it, its class taken."""
+    inner = [
+        m
+        for m in found
+        if m is not mention and start <= m.start < end and (m.cls.is_vehicle or not vehicles)
+    ]
+    if not inner:
+        return found
+    named = inner[0]
+    merged = replace(
+        mention,
+        cls=named.cls,
+        spans=tuple(sorted({*mention.spans, *named.spans}, key=lambda s: s.start)),
+    )
+    return [merged if m is mention else m for m in found if m is not named]
 
 
 def party_number(cast: Cast, mention: Mention) -> int | None:
@@ -486,20 +498,10 @@ def _bracketed_descriptions(text: str, found: list[Mention]) -> list[Mention]:
         after = _BRACKETED.match(text[mention.spans[0].end :])
         if not after:
             continue
-        start = mention.spans[0].end + after.start(1)
-        end = mention.spans[0].end + after.end(1)
-        inner = [
-            m for m in found if m is not mention and start <= m.start < end and m.cls.is_vehicle
-        ]
-        if not inner:
-            continue
-        named = inner[0]
-        merged = replace(
-            mention,
-            cls=named.cls,
-            spans=tuple(sorted({*mention.spans, *named.spans}, key=lambda s: s.start)),
+        end = mention.spans[0].end
+        found = _fold_described(
+            found, mention, end + after.start(1), end + after.end(1), vehicles=True
         )
-        found = [merged if m is mention else m for m in found if m is not named]
     return found
 
 
