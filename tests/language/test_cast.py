@@ -191,3 +191,8 @@ def test_a_principal_other_vehicle_is_one_more_vehicle_in_terse_notes() -> None:
         ("Truck", 1),
         ("Truck", 1),
     ]
+
+
+def test_a_distance_before_a_bare_noun_is_no_count() -> None:
+    text = "Ped in xwalk crossing R->L. SV stopped ~2 m short of ped."
+    assert _named(text) == [("Pedestrian", 1)]

@@ -606,6 +606,10 @@ _PLACED_BY_THE_EGO = re.compile(
 _DETERMINER = re.compile(
     r"^(?:an?|the|another|two|three|four|five|six|\d|one|some|its|their)$", re.I
 )
+#: A unit after a number: the number is a measure, not a count.
+_MEASURED = re.compile(
+    r"\s*(?:m|km|ft|feet|foot|metres?|meters?|yards?|mph|kph|km/h|s|sec)\b", re.I
+)
 
 
 @cache
@@ -631,8 +635,12 @@ def phrase_start(text: str, start: int) -> int:
     for word in reversed(words):
         if re.search(r"[.;,!?]", before[word.end() :]):
             break  # the phrase does not reach across punctuation
-        if _DETERMINER.match(word.group(0)) and not before[: word.start()].endswith("#"):
-            return max(0, start - 40) + word.start()  # "#2 lane" is a lane's number, no count
+        if (
+            _DETERMINER.match(word.group(0))
+            and not before[: word.start()].endswith("#")  # "#2 lane" is a lane's number
+            and not _MEASURED.match(before, word.end())  # "2 m short of ped" is a distance
+        ):
+            return max(0, start - 40) + word.start()
     # No article: the modifiers right before the noun ("oncoming moto"), if any.
     opened = start
     modifiers = _bare_modifiers()
