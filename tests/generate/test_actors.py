@@ -222,6 +222,19 @@ def test_no_misc_entry_puts_an_actor_where_the_text_does_not(
     assert any("left out" in note for note in found.notes)
 
 
+def test_a_walker_said_to_cross_from_a_corner_does_not_walk_along_first(
+    kb: KnowledgeBase, maps: dict[str, frozenset[str]]
+) -> None:
+    text = (
+        "The ego turns right onto Kiln Lane on a green arrow; a woman steps off the far corner"
+        " and walks across Kiln Lane."
+    )
+    spec, found = retrieved(kb, maps, text, "a woman")
+    assert spec.start_detail is not None
+    [behavior] = found.chosen[Component.BEHAVIOR]
+    assert "sudden_turn" not in behavior.tags
+
+
 def test_a_spec_without_actors_retrieves_as_before(
     kb: KnowledgeBase, maps: dict[str, frozenset[str]]
 ) -> None:

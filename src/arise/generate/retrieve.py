@@ -62,6 +62,12 @@ EGO_STOPPED_TAG = "ego_stopped"
 #: A geometry whose ego takes any route through a junction: not for an ego said to go
 #: straight, which it may turn off.
 ANY_ROUTE_TAG = "any_route"
+#: A walker that goes along the kerb before it turns to cross.
+ALONG_FIRST_TAG = "sudden_turn"
+CROSSING_STARTS = frozenset(
+    {RelativePosition.CROSSING_FROM_LEFT, RelativePosition.CROSSING_FROM_RIGHT}
+)
+EXIT_DETAILS = frozenset({StartDetail.EXIT_CROSSING, StartDetail.EXIT_FAR_CORNER})
 #: A spawn for the other road users only (traffic on a junction's far approach): the
 #: adversary's start at a junction comes with its conflict route.
 TRAFFIC_ONLY_TAG = "traffic_only"
@@ -509,6 +515,10 @@ def retrieve(
         # An ego that never moves never comes near: a behavior that waits for it would too.
         moving = [e for e in behaviors if not WAITS_FOR_EGO.search(e.snippet)]
         behaviors = moving or behaviors
+    if spec.spawn_position in CROSSING_STARTS or spec.start_detail in EXIT_DETAILS:
+        # Said to cross from a side or a corner: it crosses from the start, it does not walk
+        # along the kerb first (the trace would read it going the ego's way).
+        behaviors = _prefer(behaviors, lambda e: -int(ALONG_FIRST_TAG in e.tags))
     pools = [behaviors]
     if spec.adversary_stationary:
         # Parked, stalled or stopped in the text: a behavior that stays put, if one fits.
@@ -911,7 +921,11 @@ def _actor_entries(
     ]
     behaviors = _prefer(
         _ranked(retriever, query(words), Component.BEHAVIOR, behaviors),
-        lambda e: 10 * len(wanted & set(e.tags)) + len(STEADY_TAGS & set(e.tags)),
+        lambda e: (
+            10 * len(wanted & set(e.tags))
+            + len(STEADY_TAGS & set(e.tags))
+            - 20 * int(ALONG_FIRST_TAG in e.tags and actor.role is ActorRole.CROSSING)
+        ),
     )
     for spawn in spawns:
         both = defined | set(spawn.defines)
