@@ -210,6 +210,9 @@ def _squeezed_beside(cast: Cast, mention: Mention) -> GroundedFact | None:
     for span in mention.spans:
         found = rulebook().first(Fact.BETWEEN, text, span.end)
         if found is None:
+            beside = _between_the_ego_and_another(cast, mention, span.end)
+            if beside is not None:
+                return beside
             continue
         lead = text[span.end : found.start]
         if len(lead) <= 40 and not re.search(r"[.;]", lead):
@@ -224,6 +227,45 @@ def _squeezed_beside(cast: Cast, mention: Mention) -> GroundedFact | None:
                 quote=text[span.end : found.end].strip(),
             )
     return None
+
+
+def _between_the_ego_and_another(cast: Cast, mention: Mention, after: int) -> GroundedFact | None:
+    """ "filters up between SV and POV": on the side of the road user named right after,
+    as the text places that one."""
+    text = cast.text
+    found = rulebook().first(Fact.BETWEEN_ANOTHER, text, after)
+    if (
+        found is None
+        or len(text[after : found.start]) > 60
+        or re.search(r"[.;]", text[after : found.start])
+    ):
+        return None
+    other = next(
+        (
+            m
+            for m in cast.others
+            if m is not mention
+            and any(0 <= phrase_start(text, s.start) - found.end <= 2 for s in m.spans)
+        ),
+        None,
+    )
+    where = read_position(cast, other, by_another=False) if other is not None else None
+    if where is None:
+        return None
+    side = _SIDE_OF.get(RelativePosition(where.value))
+    if side is None:
+        return None
+    lane = (
+        RelativePosition.ADJACENT_LANE_LEFT
+        if side == "left"
+        else RelativePosition.ADJACENT_LANE_RIGHT
+    )
+    return GroundedFact(
+        name="spawn_position",
+        value=lane.value,
+        source=FactSource.TEXT,
+        quote=f"{found.quote} ... {where.quote}",
+    )
 
 
 def _ego_verb_before(cast: Cast, mention: Mention, cue: Fact) -> GroundedFact | None:

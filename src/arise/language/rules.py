@@ -74,6 +74,7 @@ class Fact(StrEnum):
     # the ego's verb of passing right before an actor: ahead, when nothing else says where
     EGO_PASSES = "ego_passes"
     BETWEEN = "between"  # squeezed between the ego and something on a side
+    BETWEEN_ANOTHER = "between_another"  # squeezed between the ego and a road user named next
     EGO_OVERTAKES = "ego_overtakes"  # the ego overtakes (a lane change to the left)
     THROUGH_ONCOMING = "through_oncoming"  # around it through the oncoming lane (a bypass)
     FROM_BEHIND = "from_behind"  # the actor comes up from behind (StartDetail.FROM_BEHIND)
@@ -279,6 +280,7 @@ def _values(fact: Fact) -> frozenset[str] | None:
                 Fact.BACKGROUND,
                 Fact.TRAFFIC_CONTROL,
                 Fact.HIDES_BEHIND,
+                Fact.BETWEEN_ANOTHER,
             )
         },
     }
