@@ -52,6 +52,9 @@ def _subject_of(text: str, words: str) -> str | None:
             "clips",
             "A scooter",
         ),
+        # an ego named right after a verb of contact is its object
+        ("A moped filters up, clips the ego's mirror.", "clips", "A moped"),
+        ("SV waits at red. Moto filters up, clips SV R mirror.", "clips", "Moto"),
         # a pronoun after a fronted phrase is still the subject
         ("On the ring road you change lanes to the right.", "change lanes", "ego"),
     ],

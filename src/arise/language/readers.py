@@ -95,9 +95,12 @@ def words_of(cast: Cast, mention: Mention) -> list[tuple[int, int]]:
     the next named actor or the end of the sentence."""
     text = cast.text
     stretches = []
-    starts = sorted(
+    # A road user named as a place ("between SV and POV") does not end the words before it.
+    places = [hit.end for hit in rulebook().hits(Fact.BETWEEN_ANOTHER, text)]
+    named = [
         phrase_start(text, s.start) for m in cast.others if not m.cls.is_place for s in m.spans
-    )
+    ]
+    starts = sorted(at for at in named if not any(0 <= at - end <= 2 for end in places))
     inverted = [c for c in cast.clauses if c.inverted and isinstance(c.subject, Mention)]
     for span in mention.spans:
         lead = _passive_verb_start(text, phrase_start(text, span.start))
