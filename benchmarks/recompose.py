@@ -50,7 +50,7 @@ class RecomposeError(AriseError):
 class Tally:
     scripts: int = 0
     replaced: int = 0
-    kept: list[str] = field(default_factory=list)  # "run: entry (why)"
+    kept: list[str] = field(default_factory=list)  # "run: entry [as actor]", left as it was
 
 
 def classes_of(script: str) -> dict[str, str]:
@@ -87,14 +87,14 @@ def run_params(report: dict[str, object], kb: KnowledgeBase, script: str) -> dic
     params = {str(k): str(v) for k, v in given.items()} if isinstance(given, dict) else {}
     spec = report.get("spec")
     timing = spec.get("timing") if isinstance(spec, dict) else None
-    if timing:
+    if timing in {t.value for t in Timing}:
         own_entries = []
         for line in script.splitlines():
             mark = ENTRY_MARK.match(line)
             if mark and mark.group(2) is None and mark.group(1) in kb:
                 own_entries.append(kb.get(mark.group(1)))
         params = {k: v for k, v in params.items() if k not in TRIGGER_PARAMS}
-        params |= timed_params(Timing(timing), own_entries)
+        params |= timed_params(Timing(str(timing)), own_entries)
     return params
 
 
