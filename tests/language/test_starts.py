@@ -145,3 +145,8 @@ def test_a_lead_ahead_of_an_ego_held_at_a_red_waits_too() -> None:
     moving = "The ego follows a campervan on the bypass when a taxi cuts in."
     [lead] = [a for a in read_actors(read_description(moving)) if a.scenic_class == "Van"]
     assert lead.role is not ActorRole.STOPPED
+
+
+def test_two_road_users_each_between_the_ego_and_the_other_read_once() -> None:
+    text = "A moped filters up between the ego and a van. The van creeps between the ego and the moped."
+    assert read_description(text).adversary is not None

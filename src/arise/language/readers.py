@@ -252,7 +252,10 @@ def _between_the_ego_and_another(cast: Cast, mention: Mention, after: int) -> Gr
         ),
         None,
     )
-    where = read_position(cast, other, by_another=False) if other is not None else None
+    # not squeezed in its turn: "A between SV and B ... B between SV and A" reads once
+    where = (
+        read_position(cast, other, by_another=False, squeezed=False) if other is not None else None
+    )
     if where is None:
         return None
     side = _SIDE_OF.get(RelativePosition(where.value))
@@ -457,13 +460,15 @@ def _from_there(cast: Cast, mention: Mention) -> tuple[int, int, RelativePositio
     return None
 
 
-def read_position(cast: Cast, mention: Mention, *, by_another: bool = True) -> GroundedFact | None:
+def read_position(
+    cast: Cast, mention: Mention, *, by_another: bool = True, squeezed: bool = True
+) -> GroundedFact | None:
     """Where `mention` starts, seen from the ego, from the words about it; when they say
     none, from the start of another actor they place it by (`_by_another`)."""
     told = (
         read_lane_number(cast, mention)
         or _ego_verb_before(cast, mention, Fact.EGO_BEHIND)
-        or _squeezed_beside(cast, mention)
+        or (_squeezed_beside(cast, mention) if squeezed else None)
     )
     if told is not None:
         return told
