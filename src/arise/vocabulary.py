@@ -188,6 +188,12 @@ class RelativePosition(StrEnum):  # where the adversary starts, seen from the eg
     CROSSING_FROM_RIGHT = "crossing_road_from_right"
 
 
+#: The starts of a road user that crosses the ego's road from a side.
+CROSSING_STARTS = frozenset(
+    {RelativePosition.CROSSING_FROM_LEFT, RelativePosition.CROSSING_FROM_RIGHT}
+)
+
+
 class StartDetail(StrEnum):
     """A finer point of where the adversary starts, when the description says it: which
     end of the lane beside the ego, or which corner of the street a turning ego enters."""

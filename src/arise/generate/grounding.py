@@ -77,7 +77,6 @@ _WALKER_STARTS = frozenset(
         RelativePosition.AHEAD_SAME_LANE,
     }
 )
-_CROSSING_SIDES = (RelativePosition.CROSSING_FROM_LEFT, RelativePosition.CROSSING_FROM_RIGHT)
 
 
 @dataclass

@@ -26,6 +26,7 @@ from arise.kb.schema import CONFLICT_ROUTE, Component, Entry
 from arise.kb.weather import weather_choice
 from arise.language.facts import FactSource
 from arise.vocabulary import (
+    CROSSING_STARTS,
     POINT_CLASSES,
     ActorClass,
     ActorRole,
@@ -64,9 +65,6 @@ EGO_STOPPED_TAG = "ego_stopped"
 ANY_ROUTE_TAG = "any_route"
 #: A walker that goes along the kerb before it turns to cross.
 ALONG_FIRST_TAG = "sudden_turn"
-CROSSING_STARTS = frozenset(
-    {RelativePosition.CROSSING_FROM_LEFT, RelativePosition.CROSSING_FROM_RIGHT}
-)
 EXIT_DETAILS = frozenset({StartDetail.EXIT_CROSSING, StartDetail.EXIT_FAR_CORNER})
 #: A spawn for the other road users only (traffic on a junction's far approach): the
 #: adversary's start at a junction comes with its conflict route.

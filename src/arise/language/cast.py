@@ -620,7 +620,6 @@ def _bare_modifiers() -> frozenset[str]:
 
 
 #: A pronoun is a phrase of its own: "the AV's right as | it" does not open at "the".
-_PRONOUN = re.compile(r"(?:it|they|them|he|she|him|her)\b", re.I)
 # Pronouns take no article: "on the motorway you ..." opens no phrase at "the".
 _NO_ARTICLE = re.compile(r"(?:it|they|them|he|she|him|her|i|we|you|me|us)\b", re.I)
 

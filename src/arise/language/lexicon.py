@@ -11,7 +11,7 @@ from typing import Any
 import yaml
 
 from arise.language.errors import RuleError
-from arise.language.patterns import compile_pattern
+from arise.language.patterns import WORD_END, compile_pattern
 
 #: libyaml's safe loader when PyYAML has it (about 10x faster on our rule files), else
 #: the pure-Python one; both build plain data only.
@@ -85,9 +85,6 @@ def slot_word(word: str) -> str:
     return lexicon().slot_words.get(slot_key(word), word.lower())
 
 
-_WORD_END = r"(?![\w'])"
-
-
 def _noun_pattern(nouns: tuple[tuple[str, tuple[str, ...]], ...]) -> re.Pattern[str]:
     """One regex for every noun, the longest phrase first whatever its class ("box truck"
     is a Truck, not a Box); each phrase's group is named CLASS_N (see `noun_class`)."""
@@ -97,7 +94,7 @@ def _noun_pattern(nouns: tuple[tuple[str, tuple[str, ...]], ...]) -> re.Pattern[
     for index, (phrase, cls) in enumerate(phrases):
         inner = compile_pattern("@x", {"x": (phrase,)}).pattern
         # with its possessive: "the bus's nose" names the bus
-        inner = inner.removesuffix(_WORD_END) + rf"(?:'s\b|{_WORD_END})"
+        inner = inner.removesuffix(WORD_END) + rf"(?:'s\b|{WORD_END})"
         groups.append(f"(?P<{cls}_{index}>{inner})")
     return re.compile("|".join(groups), re.I)
 

@@ -38,6 +38,8 @@ _GAP = r"(?:\s*[,:]\s*|\s*->\s*|\s*@\s*|[\s()/-]+)"
 #: `...`: up to eight words, within the sentence.
 _SKIP = r"(?:[\w'-]+(?:\s*,\s*|\s+)){0,8}?"  # no hyphen between: one way to split
 _WORD = re.compile(r"^[a-z0-9'][a-z0-9'-]*[*+]?$")
+#: After a pattern's last word: no more of a word ("van" is not "vans" or "van's").
+WORD_END = r"(?![\w'])"
 #: `#`: a number, with a unit joined to it or not ("20", "2.5", "20m").
 _NUMBER = r"\d+(?:\.\d+)?[a-z]*"
 
@@ -144,7 +146,7 @@ def compile_pattern(
         else:  # an optional last word hangs on the separator before it
             body = body.removesuffix(_GAP) + f"(?:{_GAP}{piece})?"
     try:
-        return re.compile(rf"(?<![\w'-]){body}(?![\w']){not_next}", re.I)
+        return re.compile(rf"(?<![\w'-]){body}{WORD_END}{not_next}", re.I)
     except re.error as error:  # a slot named twice, ...
         raise RuleError(f"pattern {pattern!r}: {error}") from error
 
