@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import re
 from dataclasses import dataclass, field
+from functools import lru_cache
 
 from arise.language.cast import (
     VEHICLE_CLASSES,
@@ -26,6 +27,7 @@ from arise.language.reading import parse
 from arise.language.rules import Fact, Hit, Target, rulebook
 from arise.language.weather import WeatherReading, read_weather
 from arise.vocabulary import (
+    CROSSING_STARTS,
     ActorClass,
     AdversaryManeuver,
     AdversaryType,
@@ -96,11 +98,11 @@ def words_of(cast: Cast, mention: Mention) -> list[tuple[int, int]]:
     text = cast.text
     stretches = []
     # A road user named as a place ("between SV and POV") does not end the words before it.
-    places = [hit.end for hit in rulebook().hits(Fact.BETWEEN_ANOTHER, text)]
+    places = _between_ends(text)
     named = [
         phrase_start(text, s.start) for m in cast.others if not m.cls.is_place for s in m.spans
     ]
-    starts = sorted(at for at in named if not any(0 <= at - end <= 2 for end in places))
+    starts = sorted(at for at in named if not any(_just_after(at, end) for end in places))
     inverted = [c for c in cast.clauses if c.inverted and isinstance(c.subject, Mention)]
     for span in mention.spans:
         lead = _passive_verb_start(text, phrase_start(text, span.start))
@@ -154,6 +156,17 @@ def words_of(cast: Cast, mention: Mention) -> list[tuple[int, int]]:
         ):
             stretches.append((clause.start, opened))
     return stretches
+
+
+@lru_cache(maxsize=16)
+def _between_ends(text: str) -> tuple[int, ...]:
+    """Where each "between the ego and" of `text` ends: words_of asks for every actor."""
+    return tuple(hit.end for hit in rulebook().hits(Fact.BETWEEN_ANOTHER, text))
+
+
+def _just_after(at: int, end: int) -> bool:
+    """Whether a phrase starting at `at` is the one right after words ending at `end`."""
+    return 0 <= at - end <= 2
 
 
 #: A place phrase that opens a clause before its subject: a preposition, no verb.
@@ -221,11 +234,7 @@ def _squeezed_beside(cast: Cast, mention: Mention) -> GroundedFact | None:
         if len(lead) <= 40 and not re.search(r"[.;]", lead):
             return GroundedFact(
                 name="spawn_position",
-                value=(
-                    RelativePosition.ADJACENT_LANE_LEFT
-                    if found.value == "left"
-                    else RelativePosition.ADJACENT_LANE_RIGHT
-                ).value,
+                value=_SIDED[RelativePosition.ADJACENT_LANE_LEFT][found.value].value,
                 source=FactSource.TEXT,
                 quote=text[span.end : found.end].strip(),
             )
@@ -248,7 +257,7 @@ def _between_the_ego_and_another(cast: Cast, mention: Mention, after: int) -> Gr
             m
             for m in cast.others
             if m is not mention
-            and any(0 <= phrase_start(text, s.start) - found.end <= 2 for s in m.spans)
+            and any(_just_after(phrase_start(text, s.start), found.end) for s in m.spans)
         ),
         None,
     )
@@ -261,14 +270,9 @@ def _between_the_ego_and_another(cast: Cast, mention: Mention, after: int) -> Gr
     side = _SIDE_OF.get(RelativePosition(where.value))
     if side is None:
         return None
-    lane = (
-        RelativePosition.ADJACENT_LANE_LEFT
-        if side == "left"
-        else RelativePosition.ADJACENT_LANE_RIGHT
-    )
     return GroundedFact(
         name="spawn_position",
-        value=lane.value,
+        value=_SIDED[RelativePosition.ADJACENT_LANE_LEFT][side].value,
         source=FactSource.TEXT,
         quote=f"{found.quote} ... {where.quote}",
     )
@@ -440,10 +444,12 @@ def _by_another(cast: Cast, mention: Mention) -> GroundedFact | None:
     return None
 
 
-def _from_there(cast: Cast, mention: Mention) -> tuple[int, int, RelativePosition, str] | None:
-    """ "from there" in the actor's words: the place named last before it ("keep an eye on
-    the far pavement: a child may dart out from there")."""
-    for start, end in words_of(cast, mention):
+def _from_there(
+    cast: Cast, stretches: list[tuple[int, int]]
+) -> tuple[int, int, RelativePosition, str] | None:
+    """ "from there" in the actor's words (`stretches`): the place named last before it
+    ("keep an eye on the far pavement: a child may dart out from there")."""
+    for start, end in stretches:
         there = rulebook().first(Fact.THERE, cast.text, start, end)
         if there is None:
             continue
@@ -479,6 +485,7 @@ def read_position(
         (hit for a, b in stretches if (hit := rulebook().first(Fact.BARE_SIDE, cast.text, a, b))),
         None,
     )
+    there = _from_there(cast, stretches)
     for start, end in stretches:
         # A rule's `unless` may see a little past the stretch ("from behind | a parked
         # van"); the cue itself must lie inside it. The first hit of each position counts.
@@ -512,8 +519,7 @@ def read_position(
             # "beside me at left, a little in front": a side said beside an end is the
             # side's lane (or kerb), as above.
             cues = []
-        there = _from_there(cast, mention) if cues else None
-        if there and there[2] in _SIDED and all(c[2] in _ALONG for c in cues):
+        if cues and there and there[2] in _SIDED and all(c[2] in _ALONG for c in cues):
             # "the lane on the right ... a motorbike comes there from behind": that lane.
             cues = [there]
         for cue in cues:
@@ -542,7 +548,7 @@ def read_position(
                 else RelativePosition.ADJACENT_LANE_RIGHT
             )
             best = (target.start, -1, position, f"{lane_side.quote} ... {target.quote}")
-    best = best or fallback or _from_there(cast, mention)
+    best = best or fallback or there
     if best is None:
         return (
             (_by_another(cast, mention) or _ego_verb_before(cast, mention, Fact.EGO_PASSES))
@@ -937,22 +943,26 @@ def choose_adversary(cast: Cast, quote: str | None) -> Mention | None:
             if named:
                 return named[0]
     road_users = [m for m in cast.others if adversary_type_of(m.cls) is not None]
-    playing: list[tuple[tuple[int, int], Mention]] = []
+    playing: list[tuple[int, Mention]] = []
     for mention in road_users:
         stretches = words_of(cast, mention)
         if any(rulebook().first(Fact.BACKGROUND, cast.text, a, b) for a, b in stretches):
             continue
         if any(cue_before(Fact.HIDES_BEHIND, cast.text, a, spaced=False) for a, _ in stretches):
             continue
-        playing.append(((_meeting_rank(cast, mention, stretches), 0), mention))
-    numbers = {id(m): n for _, m in playing if (n := party_number(cast, m)) is not None}
-    if numbers:
-        # A report's other party is its lowest-numbered one ("V2", "Party 2"), before a
-        # truck it only mentions.
-        first = min(numbers.values())
-        playing = [((rank[0], 0 if numbers.get(id(m)) == first else 1), m) for rank, m in playing]
+        playing.append((_meeting_rank(cast, mention, stretches), mention))
+    # A report's other party is its lowest-numbered one ("V2", "Party 2"), before a truck it
+    # only mentions: among equal meetings, that one first.
+    numbers = [n for _, m in playing if (n := party_number(cast, m)) is not None]
+    first = min(numbers, default=None)
     if playing:
-        return min(playing, key=lambda ranked: ranked[0])[1]
+        return min(
+            playing,
+            key=lambda ranked: (
+                ranked[0],
+                first is not None and party_number(cast, ranked[1]) != first,
+            ),
+        )[1]
     return road_users[0] if road_users else None
 
 
@@ -1091,8 +1101,7 @@ def read_road(reading: Reading) -> None:
     adversary = reading.adversary
     if (
         position is not None
-        and position.value
-        in (RelativePosition.CROSSING_FROM_LEFT, RelativePosition.CROSSING_FROM_RIGHT)
+        and position.value in CROSSING_STARTS
         and adversary is not None
         and adversary.cls in VEHICLE_CLASSES
     ):  # a vehicle cannot come from the side on an open road
