@@ -7,7 +7,10 @@ and turns a trial's score into the feedback VerifAI's active samplers learn from
 - cross-entropy (`ce`) moves its bucket distributions toward samples whose feedback is
   below 0, so the feedback is the score minus the elite level: the better of the best
   `ELITE_SHARE` of the scores so far and the critical level (TTC 1 s, contact);
-- Bayesian optimisation (`bo`, needs GPyOpt) models the score itself and minimises it.
+- Bayesian optimisation (`bo`, needs GPyOpt) models the score itself and minimises it;
+- our own `surrogate` (`surrogate.py`) fits a quadratic to the scores and tries its
+  lowest point; its uniform draws are VerifAI's random sampler's, so it starts exactly
+  where `random` does.
 
 VerifAI draws from Python's and numpy's global random generators; each sampler keeps its
 own states and swaps them in around every call, so a search is reproducible from its
@@ -26,6 +29,7 @@ from typing import Any
 
 from arise.evaluate.search.errors import SamplerUnavailable
 from arise.evaluate.search.space import DECIMALS, FreeParam, ParamKind, ParamValue
+from arise.evaluate.search.surrogate import SurrogateSampler
 
 #: Share of the scores so far that counts as elite for the cross-entropy update.
 ELITE_SHARE = 0.3
@@ -44,10 +48,16 @@ class SamplerKind(StrEnum):
     HALTON = "halton"  # low-discrepancy Halton sequence (passive)
     CE = "ce"  # cross-entropy (active)
     BO = "bo"  # Bayesian optimisation through GPyOpt (active)
+    SURROGATE = "surrogate"  # ours: the lowest point of a fitted quadratic (active)
 
     @property
     def active(self) -> bool:
-        return self in (SamplerKind.CE, SamplerKind.BO)
+        return self in (SamplerKind.CE, SamplerKind.BO, SamplerKind.SURROGATE)
+
+    @property
+    def verifai_kind(self) -> str:
+        """The VerifAI sampler behind this one (ours draws VerifAI's uniform points)."""
+        return "random" if self is SamplerKind.SURROGATE else self.value
 
 
 @dataclass
@@ -55,8 +65,8 @@ class Proposal:
     """One point VerifAI proposed, as parameter values, with what VerifAI needs back."""
 
     values: dict[str, ParamValue]
-    point: Any
-    info: Any
+    point: Any = None
+    info: Any = None
 
 
 def verifai_available() -> bool:
@@ -117,7 +127,12 @@ class ParamSampler:
         self._np_state = numpy.random.RandomState(seed % 2**32).get_state()
         space = FeatureSpace({p.name: Feature(_domain(p)) for p in params})
         with self._own_random():
-            _, self._sampler = choose_sampler(space, kind.value, _sampler_params(kind))
+            _, self._sampler = choose_sampler(space, kind.verifai_kind, _sampler_params(kind))
+        self._surrogate = (
+            SurrogateSampler(params, seed, lambda: self._draw().values)
+            if kind is SamplerKind.SURROGATE
+            else None
+        )
 
     @contextmanager
     def _own_random(self) -> Iterator[None]:
@@ -134,6 +149,12 @@ class ParamSampler:
             numpy.random.set_state(saved_np)
 
     def propose(self) -> Proposal:
+        if self._surrogate is not None:
+            return Proposal(values=self._surrogate.propose())
+        return self._draw()
+
+    def _draw(self) -> Proposal:
+        """VerifAI's sampler's next point, as parameter values."""
         with self._own_random():
             point, info = self._sampler.getSample()
         values: dict[str, ParamValue] = {}
@@ -163,5 +184,8 @@ class ParamSampler:
     def tell(self, proposal: Proposal, score: float) -> None:
         """Report a trial's score (a failed trial: the worst score) to the sampler."""
         rho = self.feedback(score)
+        if self._surrogate is not None:
+            self._surrogate.tell(proposal.values, score)
+            return
         with self._own_random():
             self._sampler.update(proposal.point, proposal.info, rho)
