@@ -35,6 +35,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import math
 import os
 import platform
 import re
@@ -306,6 +307,16 @@ def criticality_table(found: Found, agents: list[str], samplers: list[SamplerKin
     return "\n".join(lines)
 
 
+def sign_test(wins: int, losses: int) -> float:
+    """Two-sided exact sign test: the chance of a split at least this uneven between wins
+    and losses if either sampler were as likely to be sooner (ties left out)."""
+    n = wins + losses
+    if n == 0:
+        return 1.0
+    tail = sum(math.comb(n, k) for k in range(min(wins, losses) + 1)) / 2**n
+    return min(1.0, 2 * tail)
+
+
 def active_versus_random(found: Found, agents: list[str]) -> str:
     """Each active sampler against random, script by script: which found the first failure
     sooner (a search that found none counts as budget + 1), the mean trials to the first
@@ -330,9 +341,10 @@ def active_versus_random(found: Found, agents: list[str]) -> str:
             lines.append(
                 f"{agent}: {kind.value} found the first failure sooner than random in "
                 f"{sooner} searches, later in {later}, at the same trial in {same} (of "
-                f"{len(active)}); mean trials to the first (none = budget + 1) "
-                f"{statistics.mean(counts[0]):.1f} against {statistics.mean(counts[1]):.1f}; "
-                f"failures found {found_active} against {found_random}"
+                f"{len(active)}; sign test p = {sign_test(sooner, later):.3f}); mean trials "
+                f"to the first (none = budget + 1) {statistics.mean(counts[0]):.1f} against "
+                f"{statistics.mean(counts[1]):.1f}; failures found {found_active} against "
+                f"{found_random}"
             )
     return "\n".join(lines)
 

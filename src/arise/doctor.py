@@ -162,7 +162,7 @@ def _verifai() -> list[Finding]:
                 "`pip install --no-deps verifai==2.2.0 dill` (docs/search.md)",
             )
         ]
-    samplers = "random, halton, ce" + (
+    samplers = "random, halton, ce, surrogate" + (
         ", bo" if importlib.util.find_spec("GPyOpt") else " (bo needs GPyOpt)"
     )
     return [Finding("verifai", Verdict.OK, f"verifai {installed}; samplers: {samplers}")]

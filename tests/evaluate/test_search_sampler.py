@@ -97,6 +97,19 @@ def test_surrogate_starts_with_the_random_samplers_points() -> None:
         plain.tell(theirs, 5.0)
 
 
+def test_surrogate_proposes_plain_python_values_inside_the_space() -> None:
+    """The values are written into the script as they are: a numpy scalar would read
+    `np.float64(4.2)` there and fail to compile."""
+    sampler = ParamSampler(PARAMS, SamplerKind.SURROGATE, seed=0, critical_level=1.0)
+    for _ in range(12):
+        proposal = sampler.propose()
+        values = proposal.values
+        assert type(values["SPEED"]) is float and 0 <= values["SPEED"] <= 10
+        assert type(values["GAP"]) is int and values["GAP"] in (3, 4, 5, 6)
+        assert values["CAR"] in ("a", "b")
+        sampler.tell(proposal, float(values["SPEED"]) / 2 + values["GAP"])
+
+
 def test_fit_minimum_finds_a_corner_and_a_valley() -> None:
     """A slope sends the parameter to the low end; an upward curve to its vertex."""
     rng = numpy.random.default_rng(0)

@@ -54,7 +54,8 @@ def _scale(param: FreeParam, value: ParamValue) -> float:
 
 
 def _unscale(param: FreeParam, u: float) -> float:
-    return param.low + (min(1.0, max(-1.0, u)) + 1.0) / 2.0 * (param.high - param.low)
+    """A plain float (a numpy scalar would be written into the script as `np.float64(...)`)."""
+    return param.low + (min(1.0, max(-1.0, float(u))) + 1.0) / 2.0 * (param.high - param.low)
 
 
 def fit_minimum(points: numpy.ndarray, scores: numpy.ndarray) -> numpy.ndarray:
