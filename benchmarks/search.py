@@ -285,8 +285,9 @@ def _median(values: list[int]) -> str:
 
 
 def criticality_table(found: Found, agents: list[str], samplers: list[SamplerKind]) -> str:
-    """Per agent and category: scripts where the search found a failure (collision or TTC
-    under 1 s) within the budget, and the median trials to the first one, per sampler."""
+    """Per agent and category: scripts where the search found a failure (what the objective
+    looks for: a collision, or for the others a collision or a TTC under 1 s) within the
+    budget, and the median trials to the first one, per sampler."""
     head = ["agent", "category", "searches"]
     for sampler in samplers:
         head += [f"{sampler.value}: failure found", f"{sampler.value}: median trials to first"]
@@ -299,7 +300,7 @@ def criticality_table(found: Found, agents: list[str], samplers: list[SamplerKin
             count = None
             for sampler in samplers:
                 rows = [r for s, r in runs[sampler] if category in ("all", s.category)]
-                firsts = [r.first_critical for r in rows if r.first_critical is not None]
+                firsts = [r.first_found for r in rows if r.first_found is not None]
                 count = len(rows)
                 share = f"{len(firsts)}/{len(rows)} ({len(firsts) / max(1, len(rows)):.0%})"
                 cells += [share, _median(firsts)]
@@ -332,12 +333,12 @@ def active_versus_random(found: Found, agents: list[str]) -> str:
             counts: tuple[list[int], list[int]] = ([], [])
             for (_, a), (_, b) in zip(active, rand, strict=True):
                 budget = a.config.trials + 1
-                x, y = a.first_critical or budget, b.first_critical or budget
+                x, y = a.first_found or budget, b.first_found or budget
                 sooner, later, same = sooner + (x < y), later + (x > y), same + (x == y)
                 counts[0].append(x)
                 counts[1].append(y)
-            found_active = sum(a.first_critical is not None for _, a in active)
-            found_random = sum(b.first_critical is not None for _, b in rand)
+            found_active = sum(a.first_found is not None for _, a in active)
+            found_random = sum(b.first_found is not None for _, b in rand)
             lines.append(
                 f"{agent}: {kind.value} found the first failure sooner than random in "
                 f"{sooner} searches, later in {later}, at the same trial in {same} (of "
@@ -394,8 +395,8 @@ def main() -> None:
         "--objective",
         default=Objective.MIN_TTC.value,
         choices=[o.value for o in Objective if o is not Objective.CUSTOM],
-        help="what the samplers minimise (a failure is a collision or a TTC under 1 s "
-        "whatever the objective)",
+        help="what the samplers minimise; a failure is what it looks for (a collision for "
+        "'collision', else a collision or a TTC under 1 s)",
     )
     parser.add_argument(
         "--agents",
@@ -451,7 +452,8 @@ def main() -> None:
                             f"{name} {script.name} seed {seed} {sampler.value}: best "
                             f"{'-' if best is None else best.outcome.value} at "
                             f"{'-' if best is None else best.index + 1}, first critical "
-                            f"{result.first_critical or '-'}, {seconds:.0f} s"
+                            f"{result.first_critical or '-'}, first found "
+                            f"{result.first_found or '-'}, {seconds:.0f} s"
                             + (f" ({result.resumed} resumed)" if result.resumed else ""),
                             flush=True,
                         )

@@ -109,7 +109,8 @@ def search_command(
     sampler: Annotated[
         str,
         typer.Option(
-            help="VerifAI sampler: random, halton, ce (cross-entropy) or bo (needs GPyOpt); "
+            help="Sampler: VerifAI's random, halton, ce (cross-entropy) or bo (needs GPyOpt), "
+            "or our surrogate (the lowest point of a quadratic fitted to the trials so far); "
             "several, comma-separated, are compared."
         ),
     ] = "ce",
