@@ -88,6 +88,26 @@ def test_search_saves_every_trial_and_resumes(validator_pool: WorkerPool, tmp_pa
 
 
 @pytest.mark.slow
+def test_the_surrogate_sampler_runs_real_trials_and_resumes(
+    validator_pool: WorkerPool, tmp_path: Path
+) -> None:
+    """Past its uniform start the surrogate proposes from its model: those trials compile
+    and run like any other (a numpy scalar once reached the script and failed to compile),
+    and a resumed search proposes the same values again."""
+    database = tmp_path / "search.sqlite"
+    config = _config(6, SamplerKind.SURROGATE)
+    with SearchStore(database) as store:
+        first = run_search(config, store, None, _runner(validator_pool))
+    assert len(first.trials) == 6
+    for trial in first.trials:
+        assert trial.outcome.ok, trial.outcome.message
+    with SearchStore(database) as store:
+        again = run_search(_config(7, SamplerKind.SURROGATE), store, None, _runner(validator_pool))
+    assert again.resumed == 6 and len(again.trials) == 7
+    assert [t.values for t in again.trials[:6]] == [t.values for t in first.trials]
+
+
+@pytest.mark.slow
 def test_outputs_hold_the_critical_instance_and_it_scores_the_same_again(
     validator_pool: WorkerPool, tmp_path: Path
 ) -> None:
