@@ -28,7 +28,7 @@ from enum import StrEnum
 from typing import Any
 
 from arise.evaluate.search.errors import SamplerUnavailable
-from arise.evaluate.search.space import DECIMALS, FreeParam, ParamKind, ParamValue
+from arise.evaluate.search.space import FreeParam, ParamKind, ParamValue
 from arise.evaluate.search.surrogate import SurrogateSampler
 
 #: Share of the scores so far that counts as elite for the cross-entropy update.
@@ -160,13 +160,7 @@ class ParamSampler:
         values: dict[str, ParamValue] = {}
         for param in self.params:
             raw = getattr(point, param.name)
-            number = raw[0] if isinstance(raw, tuple | list) else raw
-            if param.kind is ParamKind.RANGE:
-                values[param.name] = round(float(number), DECIMALS)
-            elif param.kind is ParamKind.DISCRETE:
-                values[param.name] = int(round(float(number)))
-            else:
-                values[param.name] = param.options[int(round(float(number)))]
+            values[param.name] = param.value_at(raw[0] if isinstance(raw, tuple | list) else raw)
         return Proposal(values=values, point=point, info=info)
 
     def feedback(self, score: float) -> float:
@@ -183,9 +177,9 @@ class ParamSampler:
 
     def tell(self, proposal: Proposal, score: float) -> None:
         """Report a trial's score (a failed trial: the worst score) to the sampler."""
-        rho = self.feedback(score)
         if self._surrogate is not None:
             self._surrogate.tell(proposal.values, score)
             return
+        rho = self.feedback(score)
         with self._own_random():
             self._sampler.update(proposal.point, proposal.info, rho)

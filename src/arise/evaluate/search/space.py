@@ -52,6 +52,15 @@ class FreeParam:
     options: tuple[ParamValue, ...] = ()
     verifai: bool = False
 
+    def value_at(self, number: float) -> ParamValue:
+        """The value at `number` on this parameter's axis (an option's index for options),
+        as a plain Python value: a numpy scalar would reach the script as `np.float64(..)`."""
+        if self.kind is ParamKind.RANGE:
+            return round(float(number), DECIMALS)
+        if self.kind is ParamKind.DISCRETE:
+            return int(round(float(number)))
+        return self.options[int(round(float(number)))]
+
     def describe(self) -> str:
         if self.kind is ParamKind.OPTIONS:
             return "{" + ", ".join(repr(o) for o in self.options) + "}"

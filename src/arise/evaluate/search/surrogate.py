@@ -24,7 +24,7 @@ from dataclasses import dataclass
 
 import numpy
 
-from arise.evaluate.search.space import DECIMALS, FreeParam, ParamKind, ParamValue
+from arise.evaluate.search.space import FreeParam, ParamKind, ParamValue
 
 #: Scored trials before the model is trusted; until then every proposal is uniform.
 WARMUP = 3
@@ -55,8 +55,7 @@ def _scale(param: FreeParam, value: ParamValue) -> float:
 
 
 def _unscale(param: FreeParam, u: float) -> float:
-    """A plain float (a numpy scalar would be written into the script as `np.float64(...)`)."""
-    return param.low + (min(1.0, max(-1.0, float(u))) + 1.0) / 2.0 * (param.high - param.low)
+    return param.low + (min(1.0, max(-1.0, u)) + 1.0) / 2.0 * (param.high - param.low)
 
 
 def fit_minimum(points: numpy.ndarray, scores: numpy.ndarray) -> numpy.ndarray:
@@ -128,11 +127,9 @@ class SurrogateSampler:
         values: dict[str, ParamValue] = {}
         scaled = dict(zip((p.name for p in self.ordered), candidate, strict=True))
         for param in self.params:
-            if not _ordered(param):
+            if _ordered(param):
+                values[param.name] = param.value_at(_unscale(param, scaled[param.name]))
+            else:
                 keep = self._coin.random() < 0.5
                 values[param.name] = best.options[param.name] if keep else uniform[param.name]
-            elif param.kind is ParamKind.DISCRETE:
-                values[param.name] = int(round(_unscale(param, scaled[param.name])))
-            else:
-                values[param.name] = round(_unscale(param, scaled[param.name]), DECIMALS)
         return values
