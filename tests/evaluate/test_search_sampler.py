@@ -13,7 +13,7 @@ import pytest
 
 from arise.evaluate.search import FreeParam, ParamKind, SamplerKind, SamplerUnavailable
 from arise.evaluate.search.sampler import ParamSampler
-from arise.evaluate.search.surrogate import WARMUP, fit_minimum
+from arise.evaluate.search.surrogate import WARMUP, ScoreModel
 
 pytest.importorskip("verifai", reason="the verifai extra is not installed (docs/search.md)")
 
@@ -110,14 +110,18 @@ def test_surrogate_proposes_plain_python_values_inside_the_space() -> None:
         sampler.tell(proposal, float(values["SPEED"]) / 2 + values["GAP"])
 
 
-def test_fit_minimum_finds_a_corner_and_a_valley() -> None:
-    """A slope sends the parameter to the low end; an upward curve to its vertex."""
+def test_score_model_finds_the_lever_that_matters_and_where_the_score_is_low() -> None:
+    """A score that moves with one parameter and ignores the other: the fit gives the
+    ignored one a long length scale, and expects the most gain where the score falls."""
     rng = numpy.random.default_rng(0)
-    points = rng.uniform(-1, 1, size=(12, 2))
-    scores = 3.0 + 2.0 * points[:, 0] + 4.0 * (points[:, 1] - 0.4) ** 2
-    best = fit_minimum(points, scores)
-    assert best[0] == -1.0
-    assert abs(best[1] - 0.4) < 0.15
+    points = rng.uniform(-1, 1, size=(14, 2))
+    scores = 3.0 + 2.0 * (points[:, 0] - 0.4) ** 2
+    model = ScoreModel(points, scores)
+    assert model.lengths[1] > model.lengths[0]
+    grid = numpy.array([[-0.9, 0.0], [0.4, 0.0], [0.9, 0.0]])
+    assert int(numpy.argmax(model.expected_improvement(grid))) == 1
+    mean, sd = model.predict(points[:1])
+    assert abs(model.mean + model.scale * mean[0] - scores[0]) < 0.2 and sd[0] < 0.2
 
 
 def test_surrogate_finds_a_corner_failure_sooner_than_random() -> None:

@@ -1,23 +1,25 @@
-"""Where a fitted model of the trials so far says the score is lowest: our active sampler.
+"""Where a model of the trials so far expects the most gain: our active sampler.
 
-A trial's score (TTC, distance) often moves steadily with a lever: a later start, a
-faster adversary, a shorter gap. So after the first few trials the search fits, over the
-parameters scaled to [-1, 1], a model with a slope and a curvature per parameter (ridge
-least squares: a few trials in many parameters still give a usable direction) and tries
-the point where the model is lowest, a little shaken so two proposals never coincide. That
-point is often a corner of the box, which a uniform draw almost never reaches, or the
-bottom of a timing window (too early and the agent sees it coming, too late and the two
-miss). A share of the proposals stays uniform, in case the model is wrong.
+A trial's score (TTC, distance) moves with the levers, often smoothly and often with one
+or two levers that matter: a later start, a faster adversary, a shorter gap. So after the
+first few trials the search fits a Gaussian process to the scores over the parameters
+scaled to [-1, 1], one length scale per parameter (picked by the fit's marginal
+likelihood, so a lever the score ignores gets a long one), and tries the candidate with
+the largest expected improvement over the best score so far. The candidates are uniform
+points and points close around the best trials: a near miss is often one small step from
+contact. Unlike a fitted quadratic, whose lowest point may sit in a corner the trials have
+already ruled out, the process knows where it has looked. A share of the proposals stays
+uniform, in case the model is wrong.
 
 The uniform draws come from the caller (VerifAI's random sampler, with the search's seed),
 so until the model has its first trials this sampler proposes exactly what `random` would.
 Parameters with unordered options are not modelled: they take the best trial's option or a
-uniform one. Measured against `idm` on the dev scenes (docs/benchmarks.md): it gets closer
-to contact than `random` within the same trials, but finds the first failure no sooner.
+uniform one. Measured against `random` on the dev scenes: docs/benchmarks.md.
 """
 
 from __future__ import annotations
 
+import math
 import random
 from collections.abc import Callable
 from dataclasses import dataclass
@@ -29,14 +31,17 @@ from arise.evaluate.search.space import FreeParam, ParamKind, ParamValue
 #: Scored trials before the model is trusted; until then every proposal is uniform.
 WARMUP = 3
 #: Share of the later proposals that stay uniform.
-EXPLORE_SHARE = 0.25
-#: Ridge penalty on every coefficient but the mean (in units of the scaled parameters).
-RIDGE = 0.3
-#: How much a model's proposal is shaken (standard deviation, scaled units).
-JITTER = 0.15
-#: A proposal closer than this to a point already tried (mean scaled distance per
-#: parameter) is shaken again, harder.
-TOO_CLOSE = 0.08
+EXPLORE_SHARE = 0.2
+#: Length scales a parameter may get (scaled units; the box is 2 wide).
+LENGTH_SCALES = (0.25, 0.5, 1.0, 2.0, 4.0)
+#: Noise variance of the normalized scores: a changed value may move the scene a little.
+NOISE = 0.01
+#: Uniform candidates for the expected improvement, and candidates around each best trial.
+UNIFORM_CANDIDATES = 1500
+LOCAL_CANDIDATES = 300
+#: Best trials the local candidates gather around, and how far they stray (scaled units).
+LOCAL_AROUND = 3
+LOCAL_SPREADS = (0.05, 0.15, 0.35)
 
 
 @dataclass(frozen=True)
@@ -58,22 +63,58 @@ def _unscale(param: FreeParam, u: float) -> float:
     return param.low + (min(1.0, max(-1.0, u)) + 1.0) / 2.0 * (param.high - param.low)
 
 
-def fit_minimum(points: numpy.ndarray, scores: numpy.ndarray) -> numpy.ndarray:
-    """The point of [-1, 1]^d where a separable quadratic, ridge-fitted to the scores, is
-    lowest (per parameter: the vertex when it curves up inside the box, else an end)."""
-    count, dims = points.shape
-    features = numpy.hstack([numpy.ones((count, 1)), points, points**2])
-    penalty = numpy.eye(1 + 2 * dims) * RIDGE
-    penalty[0, 0] = 0.0
-    coef = numpy.linalg.solve(features.T @ features + penalty, features.T @ scores)
-    slope, curve = coef[1 : 1 + dims], coef[1 + dims :]
-    best = numpy.empty(dims)
-    for i, (a, b) in enumerate(zip(slope, curve, strict=True)):
-        ends = [-1.0, 1.0]
-        if b > 1e-9:
-            ends.append(float(numpy.clip(-a / (2 * b), -1.0, 1.0)))
-        best[i] = min((float(a * u + b * u * u), u) for u in ends)[1]
-    return best
+class ScoreModel:
+    """A Gaussian process over scaled points, one length scale per dimension (see module)."""
+
+    def __init__(self, points: numpy.ndarray, scores: numpy.ndarray):
+        self.points = points
+        self.mean = float(scores.mean())
+        self.scale = float(scores.std()) or 1.0
+        self.targets = (scores - self.mean) / self.scale
+        dims = points.shape[1]
+        self.lengths = numpy.full(dims, 1.0)
+        best = self._evidence(self.lengths)
+        for _ in range(2):  # coordinate ascent over the grid
+            for i in range(dims):
+                for length in LENGTH_SCALES:
+                    trial = self.lengths.copy()
+                    trial[i] = length
+                    evidence = self._evidence(trial)
+                    if evidence > best + 1e-9:
+                        best, self.lengths = evidence, trial
+        self._factor, self._alpha = self._solve(self.lengths)
+
+    def _kernel(self, a: numpy.ndarray, b: numpy.ndarray, lengths: numpy.ndarray) -> numpy.ndarray:
+        diff = (a[:, None, :] - b[None, :, :]) / lengths
+        return numpy.exp(-0.5 * (diff**2).sum(axis=2))
+
+    def _solve(self, lengths: numpy.ndarray) -> tuple[numpy.ndarray, numpy.ndarray]:
+        gram = self._kernel(self.points, self.points, lengths)
+        factor = numpy.linalg.cholesky(gram + NOISE * numpy.eye(len(self.points)))
+        alpha = numpy.linalg.solve(factor.T, numpy.linalg.solve(factor, self.targets))
+        return factor, alpha
+
+    def _evidence(self, lengths: numpy.ndarray) -> float:
+        """Log marginal likelihood of the scores under these length scales (up to a constant)."""
+        factor, alpha = self._solve(lengths)
+        return float(-0.5 * self.targets @ alpha - numpy.log(numpy.diag(factor)).sum())
+
+    def predict(self, candidates: numpy.ndarray) -> tuple[numpy.ndarray, numpy.ndarray]:
+        """Mean and standard deviation of the normalized score at each candidate."""
+        cross = self._kernel(candidates, self.points, self.lengths)
+        mean = cross @ self._alpha
+        solved = numpy.linalg.solve(self._factor, cross.T)
+        variance = numpy.clip(1.0 - (solved**2).sum(axis=0), 1e-12, None)
+        return mean, numpy.sqrt(variance)
+
+    def expected_improvement(self, candidates: numpy.ndarray) -> numpy.ndarray:
+        """How far below the best score so far each candidate is expected to go."""
+        mean, sd = self.predict(candidates)
+        gain = self.targets.min() - mean
+        z = gain / sd
+        cdf = 0.5 * (1.0 + numpy.vectorize(math.erf)(z / math.sqrt(2.0)))
+        pdf = numpy.exp(-0.5 * z * z) / math.sqrt(2.0 * math.pi)
+        return numpy.asarray(gain * cdf + sd * pdf)
 
 
 class SurrogateSampler:
@@ -111,17 +152,30 @@ class SurrogateSampler:
     def _point(self, values: dict[str, ParamValue]) -> tuple[float, ...]:
         return tuple(round(_scale(p, values[p.name]), 6) for p in self.ordered)
 
+    def _candidates(self, points: numpy.ndarray, scores: numpy.ndarray) -> numpy.ndarray:
+        dims = points.shape[1]
+        spread = [self._rng.uniform(-1.0, 1.0, (UNIFORM_CANDIDATES, dims))]
+        for index in numpy.argsort(scores)[:LOCAL_AROUND]:
+            sizes = self._rng.choice(LOCAL_SPREADS, (LOCAL_CANDIDATES, 1))
+            near = points[index] + self._rng.normal(0.0, 1.0, (LOCAL_CANDIDATES, dims)) * sizes
+            spread.append(numpy.clip(near, -1.0, 1.0))
+        return numpy.vstack(spread)
+
     def _from_model(self) -> dict[str, ParamValue]:
         points = numpy.array([t.point for t in self._tried])
         scores = numpy.array([t.score for t in self._tried])
-        target = fit_minimum(points, scores)
-        seen = numpy.array([t.point for t in self._tried] + self._pending)
-        spread = JITTER
-        for _ in range(6):
-            candidate = numpy.clip(target + self._rng.normal(0.0, spread, target.shape), -1, 1)
-            if numpy.abs(seen - candidate).mean(axis=1).min() >= TOO_CLOSE:
-                break
-            spread *= 1.6
+        candidates = self._candidates(points, scores)
+        model = ScoreModel(points, scores)
+        if self._pending:
+            # Proposed in this batch but not scored yet: believe the model's guess for
+            # them, so the next proposal goes elsewhere instead of beside them.
+            pending = numpy.array(self._pending)
+            guessed = model.mean + model.scale * model.predict(pending)[0]
+            model = ScoreModel(
+                numpy.vstack([points, pending]), numpy.concatenate([scores, guessed])
+            )
+        gains = model.expected_improvement(candidates)
+        candidate = candidates[int(numpy.argmax(gains))]
         best = min(self._tried, key=lambda t: t.score)
         uniform = self._uniform() if any(not _ordered(p) for p in self.params) else {}
         values: dict[str, ParamValue] = {}
