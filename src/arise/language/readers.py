@@ -555,8 +555,14 @@ def read_position(
             if by_another
             else None
         )
+    position = best[2]
+    if mention.cls.is_walker and _PAIRS[1].get(_SIDE_OF.get(position, "")) is position:
+        # A walker "from the passenger side", "in the lane on the right": no walker starts
+        # in a traffic lane; it stands at that kerb, or comes off it across the road.
+        pair = _PAIRS[0] if read_stationary(cast, mention) else _PAIRS[2]
+        position = pair[_SIDE_OF[position]]
     return GroundedFact(
-        name="spawn_position", value=best[2].value, source=FactSource.TEXT, quote=best[3]
+        name="spawn_position", value=position.value, source=FactSource.TEXT, quote=best[3]
     )
 
 
