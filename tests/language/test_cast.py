@@ -27,6 +27,8 @@ def _ego_words(text: str) -> list[str]:
         ("I was driving my car down Elm Road when a bike appeared.", ["I", "my car"]),
         # NHTSA's typology names the ego "Vehicle", with no article.
         ("Vehicle turning right; a cyclist going straight on its right.", ["Vehicle"]),
+        # The possessive of a name of the ego is the ego's, not another car's.
+        ("The test vehicle's front wing was clipped by a scooter.", ["test vehicle's"]),
     ],
 )
 def test_the_ego_is_found_under_its_names(text: str, ego: list[str]) -> None:

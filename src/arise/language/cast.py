@@ -251,8 +251,17 @@ _INSURED = re.compile(
 _FIRST_PERSON = re.compile(r"^(?:i|we|my car|my vehicle|our car|our vehicle)$", re.I)
 
 
+_POSSESSIVE = re.compile(r"['\u2019]s\b")
+
+
 def _ego_spans(text: str) -> list[Span]:
-    spans = [Span(*m.span()) for m in class_pattern("ego").finditer(text)]
+    # "the test vehicle's front bumper": the possessive is the ego's too (its "vehicle's" is
+    # no other car). The ego's phrases are matched with every "'s" blanked (same length).
+    plain = _POSSESSIVE.sub("  ", text)
+    spans = [
+        Span(m.start(), m.end() + (2 if _POSSESSIVE.match(text, m.end()) else 0))
+        for m in class_pattern("ego").finditer(plain)
+    ]
     # "I" only as a capital letter; "we"/"i" in lower case mid-word cannot occur (whole words)
     spans = [s for s in spans if text[s.start : s.end] != "i"]
     if any(_FIRST_PERSON.match(text[s.start : s.end]) for s in spans):

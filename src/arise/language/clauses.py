@@ -69,6 +69,14 @@ _PREPOSITION = re.compile(
 )
 
 
+#: The ego's front, as the subject of what the ego ran into ("the AV's front bumper hit").
+_EGO_FRONT = re.compile(
+    r"(?:'s)?\s+(?:front(?:\s+(?:bumper|end|grille|grill|fascia))?|bonnet|hood|grille)\s+"
+    r"(?!was\b|were\b|is\b|got\b)",
+    re.I,
+)
+
+
 def _opening_actor(
     cast: Cast, spans: list[tuple[Span, Actor]], start: int, end: int
 ) -> Actor | None:
@@ -94,6 +102,8 @@ def _opening_actor(
         if cast.text[span.start : span.end].lower().endswith("'s") or re.match(
             r"'s\b", cast.text[span.end : span.end + 2]
         ):
+            if actor == "ego" and _EGO_FRONT.match(cast.text, span.end):
+                return actor  # "the AV's front bumper struck ...": the ego did it
             continue  # "the ego's lane"
         return actor
     return _inverted_subject(cast, spans, first_word, end)

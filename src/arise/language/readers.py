@@ -41,10 +41,11 @@ from arise.vocabulary import (
 
 
 def cue_before(fact: Fact, text: str, position: int, *, spaced: bool = True) -> Hit | None:
-    """The cue of `fact` whose words end right before `position` (within 20 characters,
-    only spaces between): "following | a van", "out from behind | a parked truck"."""
+    """The cue of `fact` whose words end right before `position` (starting within 40
+    characters, only spaces between): "following | a van", "out from behind | a parked
+    truck", "made contact with the rear end of | a van"."""
     found = None
-    for hit in rulebook().hits(fact, text, max(0, position - 20), position):
+    for hit in rulebook().hits(fact, text, max(0, position - 40), position):
         between = text[hit.end : position]
         if not between.strip() and (between or not spaced):
             found = hit
