@@ -110,7 +110,8 @@ def search_command(
         str,
         typer.Option(
             help="Sampler: VerifAI's random, halton, ce (cross-entropy) or bo (needs GPyOpt), "
-            "or our surrogate (the lowest point of a quadratic fitted to the trials so far); "
+            "or our surrogate (a Gaussian process fitted to the trials so far, trying where "
+            "it expects the most gain); "
             "several, comma-separated, are compared."
         ),
     ] = "ce",

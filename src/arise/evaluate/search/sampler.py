@@ -8,8 +8,8 @@ and turns a trial's score into the feedback VerifAI's active samplers learn from
   below 0, so the feedback is the score minus the elite level: the better of the best
   `ELITE_SHARE` of the scores so far and the critical level (TTC 1 s, contact);
 - Bayesian optimisation (`bo`, needs GPyOpt) models the score itself and minimises it;
-- our own `surrogate` (`surrogate.py`) fits a quadratic to the scores and tries its
-  lowest point; its uniform draws are VerifAI's random sampler's, so it starts exactly
+- our own `surrogate` (`surrogate.py`) fits a Gaussian process to the scores and tries
+  where it expects the most gain; its uniform draws are VerifAI's random sampler's, so it starts exactly
   where `random` does.
 
 VerifAI draws from Python's and numpy's global random generators; each sampler keeps its
@@ -48,7 +48,7 @@ class SamplerKind(StrEnum):
     HALTON = "halton"  # low-discrepancy Halton sequence (passive)
     CE = "ce"  # cross-entropy (active)
     BO = "bo"  # Bayesian optimisation through GPyOpt (active)
-    SURROGATE = "surrogate"  # ours: the lowest point of a fitted quadratic (active)
+    SURROGATE = "surrogate"  # ours: a Gaussian process's expected improvement (active)
 
     @property
     def active(self) -> bool:
