@@ -60,6 +60,7 @@ DEV_FILES = (
     "fresh.jsonl",
     "fresh2.jsonl",
     "fresh3.jsonl",
+    "fresh4.jsonl",
 )
 
 

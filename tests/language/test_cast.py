@@ -198,3 +198,29 @@ def test_a_principal_other_vehicle_is_one_more_vehicle_in_terse_notes() -> None:
 def test_a_distance_before_a_bare_noun_is_no_count() -> None:
     text = "Ped in xwalk crossing R->L. SV stopped ~2 m short of ped."
     assert _named(text) == [("Pedestrian", 1)]
+
+
+@pytest.mark.parametrize(
+    ("text", "named"),
+    [
+        # An apposition names a generic one: one road user, of the class it names.
+        (
+            "Vehicle slowing in traffic; following vehicle, a moped, does not brake.",
+            [("Motorcycle", 1)],
+        ),
+        (
+            "I had stopped when the third party, driving a grey minivan, rolled into me.",
+            [("Van", 1)],
+        ),
+        # "the third party" said again, and "their" vehicle, are the one named before.
+        (
+            "A jogger ran out in front of my car. I think the third party never looked.",
+            [("Pedestrian", 1)],
+        ),
+        ("The other party reversed into my door. Their pickup had no lights on.", [("Truck", 1)]),
+    ],
+)
+def test_a_party_or_a_generic_vehicle_is_the_road_user_its_words_name(
+    text: str, named: list[tuple[str, int]]
+) -> None:
+    assert _named(text) == named

@@ -93,6 +93,8 @@ class DevSet(StrEnum):
     FRESH2 = "fresh2"
     # a third probe, kept unread until the lead scores it first
     FRESH3 = "fresh3"
+    # a fourth probe, written 2026-11-29 and first scored on a change it was not written for
+    FRESH4 = "fresh4"
     # tests/heldapart: measured only, never tuned on (its README states the rule)
     HELDAPART = "heldapart"
 
@@ -106,6 +108,7 @@ DEVSET_FILES: dict[DevSet, str] = {
     DevSet.FRESH: "fresh.jsonl",
     DevSet.FRESH2: "fresh2.jsonl",
     DevSet.FRESH3: "fresh3.jsonl",
+    DevSet.FRESH4: "fresh4.jsonl",
 }
 
 

@@ -358,6 +358,8 @@ def read_cast(text: str) -> Cast:
         if earlier is not None:
             index = found.index(earlier)
             found[index] = earlier.with_span(span)
+            if _is_party(earlier) and cls.is_vehicle and earlier.cls is not cls:
+                found[index] = replace(found[index], cls=cls)  # "their van": a van
             continue
         plural = _is_plural(word, cls)
         counted = bool(count_match) or not (plural or _GROUP.search(before))
@@ -370,6 +372,7 @@ def read_cast(text: str) -> Cast:
         if kind.startswith(("V", "P")) and kind != "noun":
             numbered[kind] = len(found) - 1
     found = _numbered_descriptions(text, found, numbered)
+    found = _generic_descriptions(text, found)
     found = _bracketed_descriptions(text, found)
     found = _heading_mentions(text, found)
     found = _ego_appositions(text, ego, found)
@@ -460,6 +463,31 @@ def _numbered_descriptions(
         found = _fold_described(
             found, mention, first.end + after.start(1), first.end + after.end(1)
         )
+    return found
+
+
+#: A generic name ("the other vehicle", "following vehicle", "the third party") and what it
+#: is, said right after it between commas: "other vehicle, a sedan, ...".
+_GENERIC_HEAD = re.compile(r"(?:vehicle|party)$", re.I)
+_GENERIC_APPOSITION = re.compile(
+    r"^,\s*(?:(?:driving|driven|riding|in|on)\s+)?(?:a|an)\s+([^,;.()]{1,60})", re.I
+)
+
+
+def _generic_descriptions(text: str, found: list[Mention]) -> list[Mention]:
+    """ "Following vehicle, a motorcycle, fails to stop", "the third party, driving a blue
+    estate car": the apposition names the generic one, folded into it (a vehicle first:
+    "the third party, a man on a pushbike" is the pushbike)."""
+    for mention in list(found):
+        first = mention.spans[0]
+        if mention not in found or not _GENERIC_HEAD.search(text[first.start : first.end]):
+            continue
+        after = _GENERIC_APPOSITION.match(text[first.end :])
+        if not after:
+            continue
+        start, end = first.end + after.start(1), first.end + after.end(1)
+        folded = _fold_described(found, mention, start, end, vehicles=True)
+        found = folded if folded is not found else _fold_described(found, mention, start, end)
     return found
 
 
@@ -580,6 +608,13 @@ def _same_thing(
     after: str = "",
 ) -> Mention | None:
     """An earlier mention this one refers back to ("the van", "the other vehicle")."""
+    if word.lower().endswith("party") and _DEFINITE.search(before):
+        # "the third party" after a road user is named: that one, whatever it is
+        return found[-1] if found else None
+    if _POSSESSOR.search(before):
+        party = next((m for m in reversed(found) if _is_party(m)), None)
+        if party is not None and cls.is_vehicle:
+            return party  # "the third party ... their van": the party's own vehicle
     if _THE_OTHER.search(before):
         for earlier in reversed(found):
             if earlier.cls in VEHICLE_CLASSES or cls == earlier.cls:
@@ -603,6 +638,16 @@ def _same_thing(
         if generic_vehicle and earlier.cls in VEHICLE_CLASSES and cls is ActorClass.CAR:
             return earlier
     return None
+
+
+#: "their van", "his car": the vehicle of someone named before.
+_POSSESSOR = re.compile(r"\b(?:their|his|her)\s+(?:[\w'-]+[- ]){0,2}$", re.I)
+
+
+def _is_party(mention: Mention) -> bool:
+    """ "the third party", "the other party": a road user named by its part in the claim,
+    which an apposition or its vehicle ("their van") later names properly."""
+    return mention.quote.lower().endswith("party")
 
 
 #: After a generic "the car": where it is from the ego, which names a new one.
