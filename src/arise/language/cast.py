@@ -252,6 +252,7 @@ _FIRST_PERSON = re.compile(r"^(?:i|we|my car|my vehicle|our car|our vehicle)$", 
 
 
 _POSSESSIVE = re.compile(r"['\u2019]s\b")
+_OWN_VEHICLE = re.compile(r"(?<=['\u2019]s)\s+(?:vehicle|car)\b(?![\s-]+park)", re.I)
 
 
 def _ego_spans(text: str) -> list[Span]:
@@ -261,6 +262,11 @@ def _ego_spans(text: str) -> list[Span]:
     spans = [
         Span(m.start(), m.end() + (2 if _POSSESSIVE.match(text, m.end()) else 0))
         for m in class_pattern("ego").finditer(plain)
+    ]
+    # "our insured's vehicle", "the AV's car": the ego's own vehicle is the ego.
+    spans = [
+        Span(s.start, owned.end()) if (owned := _OWN_VEHICLE.match(text, s.end)) else s
+        for s in spans
     ]
     # "I" only as a capital letter; "we"/"i" in lower case mid-word cannot occur (whole words)
     spans = [s for s in spans if text[s.start : s.end] != "i"]

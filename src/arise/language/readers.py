@@ -369,6 +369,9 @@ def _ego_named_in(cast: Cast, clause: Clause) -> bool:
     )
 
 
+_HIDDEN_BY = re.compile(r"\b(?:hidden|hiding|concealed|obscured|masked|screened)\s+$", re.I)
+
+
 def _pronoun_means_another(cast: Cast, mention: Mention, hit: Hit) -> bool:
     """Whether the pronoun ending a cue ("two cones behind it") stands for another road user
     or the actor itself rather than the ego: the subject of its clause when that is another
@@ -376,6 +379,8 @@ def _pronoun_means_another(cast: Cast, mention: Mention, hit: Hit) -> bool:
     comes up behind it": the ego); without clauses, the one named last before it."""
     if not _ENDS_IN_PRONOUN.search(hit.quote):
         return False
+    if _HIDDEN_BY.search(cast.text, max(0, hit.start - 30), hit.start):
+        return True  # "hidden behind it": nothing hides from the ego behind the ego
     before = [c for c in cast.clauses if c.start <= hit.start]
     for clause in reversed(before):
         if clause.subject is None or clause.subject is mention:
@@ -536,9 +541,10 @@ def read_position(
         # own lane change ("moves into the left lane").
         target = rulebook().first(Fact.TARGET_LANE, cast.text, start, end)
         lane_side = rulebook().first(Fact.LANE_SIDE, cast.text)
-        if target and not lane_side and (best is None or target.start < best[0]):
-            # The lane the ego turns into, with no lane change said: ahead on its route.
-            best = (target.start, -1, RelativePosition.AHEAD_SAME_LANE, target.quote)
+        if target and not lane_side and fallback is None:
+            # The lane the ego turns into, with no lane change said: ahead on its route,
+            # unless the actor's words place it ("in that lane ... hit the AV's rear").
+            fallback = (target.start, -1, RelativePosition.AHEAD_SAME_LANE, target.quote)
         behind_here = (
             best is not None and best[2] is RelativePosition.BEHIND_SAME_LANE and best[0] >= start
         )
