@@ -27,6 +27,11 @@ def _ego_words(text: str) -> list[str]:
         ("I was driving my car down Elm Road when a bike appeared.", ["I", "my car"]),
         # NHTSA's typology names the ego "Vehicle", with no article.
         ("Vehicle turning right; a cyclist going straight on its right.", ["Vehicle"]),
+        # ... and in the typology's style "the vehicle's" is the ego's too.
+        (
+            "Vehicle turning left; a moped on the vehicle's left goes straight.",
+            ["Vehicle", "the vehicle's"],
+        ),
         # The possessive of a name of the ego is the ego's, not another car's.
         ("The test vehicle's front wing was clipped by a scooter.", ["test vehicle's"]),
     ],

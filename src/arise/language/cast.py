@@ -89,6 +89,9 @@ _NHTSA_EGO_ANYWHERE = re.compile(r"(?<![\w'])(?<!\bthe )(?<!\ba )(?<!\ban )Vehic
 _NHTSA_EGO_AFTER_PREPOSITION = re.compile(
     r"\b(?:into|onto|of|to|with|by|behind|toward|towards|past|from|beside) (vehicle(?:'s)?)\b"
 )
+# ... and "the vehicle's" (its path, its right side): the typology names the other one "other
+# vehicle" or by its kind.
+_NHTSA_EGO_OWNS = re.compile(r"\bthe vehicle['\u2019]s\b", re.I)
 # A year and a capitalised name ("a 2017 Hollis Tern"), or a known make ("a white Subaru").
 _YEAR_NAME = re.compile(
     r"\b(?:19[5-9]\d|20[0-4]\d)\s+(?:[A-Z][\w-]*)(?:\s+(?:[A-Z0-9][\w-]*))?(?:\s+(?:[A-Z0-9][\w-]*))?"
@@ -276,6 +279,7 @@ def _ego_spans(text: str) -> list[Span]:
     if nhtsa:  # the typology's style: every bare "Vehicle" is the ego
         spans += [Span(*m.span()) for m in _NHTSA_EGO_ANYWHERE.finditer(text)]
         spans += [Span(*m.span(1)) for m in _NHTSA_EGO_AFTER_PREPOSITION.finditer(text)]
+        spans += [Span(*m.span()) for m in _NHTSA_EGO_OWNS.finditer(text)]
     ego_number = _numbered_ego(text)
     if ego_number is not None:
         spans += [Span(*m.span()) for m in _NUMBERED.finditer(text) if m.group(1) == ego_number]
