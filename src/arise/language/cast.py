@@ -620,7 +620,7 @@ def _same_thing(
     """An earlier mention this one refers back to ("the van", "the other vehicle")."""
     if word.lower().endswith("party") and _DEFINITE.search(before):
         # "the third party" after a road user is named: that one, whatever it is
-        return found[-1] if found else None
+        return next((m for m in reversed(found) if not m.cls.is_place and not m.is_prop), None)
     if _POSSESSOR.search(before):
         party = next((m for m in reversed(found) if _is_party(m)), None)
         if party is not None and cls.is_vehicle:

@@ -563,7 +563,7 @@ def read_position(
             else None
         )
     position = best[2]
-    if mention.cls.is_walker and _PAIRS[1].get(_SIDE_OF.get(position, "")) is position:
+    if mention.cls.is_walker and position in _PAIRS[1].values():
         # A walker "from the passenger side", "in the lane on the right": no walker starts
         # in a traffic lane; it stands at that kerb, or comes off it across the road.
         pair = _PAIRS[0] if read_stationary(cast, mention) else _PAIRS[2]
