@@ -13,7 +13,7 @@ import pytest
 
 from arise.evaluate.search import FreeParam, ParamKind, SamplerKind, SamplerUnavailable
 from arise.evaluate.search.sampler import ParamSampler
-from arise.evaluate.search.surrogate import WARMUP, ScoreModel
+from arise.evaluate.search.surrogate import WARMUP, ScoreModel, _finite
 
 pytest.importorskip("verifai", reason="the verifai extra is not installed (docs/search.md)")
 
@@ -151,3 +151,18 @@ def test_surrogate_finds_a_corner_failure_sooner_than_random() -> None:
         return statistics.mean(firsts)
 
     assert mean_first(SamplerKind.SURROGATE) < 0.5 * mean_first(SamplerKind.RANDOM)
+
+
+def test_surrogate_takes_infinite_and_undefined_scores() -> None:
+    """A custom expression may score a trial inf or nan: the model still proposes values
+    inside the space."""
+    raw = numpy.array([float("inf"), 3.0, float("nan"), 2.0, float("-inf")])
+    assert _finite(raw).tolist() == [3.0, 3.0, 3.0, 2.0, 2.0]
+    model = ScoreModel(numpy.array([[-0.5], [0.0], [0.5], [0.9], [-0.9]]), _finite(raw))
+    assert numpy.isfinite(model.expected_improvement(numpy.array([[0.2]]))).all()
+    sampler = ParamSampler(PARAMS, SamplerKind.SURROGATE, seed=1, critical_level=1.0)
+    scores = [float("inf"), 3.0, float("nan"), 2.0, float("-inf"), 4.0, 1.5, 2.5]
+    for score in scores:
+        proposal = sampler.propose()
+        assert 0 <= float(proposal.values["SPEED"]) <= 10
+        sampler.tell(proposal, score)

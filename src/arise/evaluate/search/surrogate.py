@@ -63,6 +63,16 @@ def _unscale(param: FreeParam, u: float) -> float:
     return param.low + (min(1.0, max(-1.0, u)) + 1.0) / 2.0 * (param.high - param.low)
 
 
+def _finite(scores: numpy.ndarray) -> numpy.ndarray:
+    """Scores a Gaussian process can take: a custom expression may give an infinite or
+    undefined one, counted as the worst (or, for minus infinity, the best) finite one."""
+    finite = numpy.isfinite(scores)
+    if finite.all():
+        return scores
+    low, high = (scores[finite].min(), scores[finite].max()) if finite.any() else (0.0, 0.0)
+    return numpy.where(finite, scores, numpy.where(scores == -numpy.inf, low, high))
+
+
 class ScoreModel:
     """A Gaussian process over scaled points, one length scale per dimension (see module)."""
 
@@ -163,7 +173,7 @@ class SurrogateSampler:
 
     def _from_model(self) -> dict[str, ParamValue]:
         points = numpy.array([t.point for t in self._tried])
-        scores = numpy.array([t.score for t in self._tried])
+        scores = _finite(numpy.array([t.score for t in self._tried]))
         candidates = self._candidates(points, scores)
         model = ScoreModel(points, scores)
         if self._pending:
