@@ -93,17 +93,25 @@ _GOES_ON = frozenset({"and", "and then", "then", "but"})
 _LEAD_WORDS = frozenset({"and", "but", "then", "so", "suddenly", "also", "now", "later"})
 
 
-def words_of(cast: Cast, mention: Mention) -> list[tuple[int, int]]:
-    """The stretches of text about `mention`: from a few words before each of its spans to
-    the next named actor or the end of the sentence."""
+@lru_cache(maxsize=16)
+def _actor_starts(cast: Cast) -> tuple[int, ...]:
+    """Where the phrase of each named road user begins, in order: the ends of other actors'
+    words (the same for every actor of a cast, so found once)."""
     text = cast.text
-    stretches = []
     # A road user named as a place ("between SV and POV") does not end the words before it.
     places = _between_ends(text)
     named = [
         phrase_start(text, s.start) for m in cast.others if not m.cls.is_place for s in m.spans
     ]
-    starts = sorted(at for at in named if not any(_just_after(at, end) for end in places))
+    return tuple(sorted(at for at in named if not any(_just_after(at, end) for end in places)))
+
+
+def words_of(cast: Cast, mention: Mention) -> list[tuple[int, int]]:
+    """The stretches of text about `mention`: from a few words before each of its spans to
+    the next named actor or the end of the sentence."""
+    text = cast.text
+    stretches = []
+    starts = _actor_starts(cast)
     inverted = [c for c in cast.clauses if c.inverted and isinstance(c.subject, Mention)]
     for span in mention.spans:
         lead = _passive_verb_start(text, phrase_start(text, span.start))
