@@ -618,7 +618,7 @@ def _same_thing(
     after: str = "",
 ) -> Mention | None:
     """An earlier mention this one refers back to ("the van", "the other vehicle")."""
-    if word.lower().endswith("party") and _DEFINITE.search(before):
+    if _is_party_word(word) and _DEFINITE.search(before):
         # "the third party" after a road user is named: that one, whatever it is
         return next((m for m in reversed(found) if not m.cls.is_place and not m.is_prop), None)
     if _POSSESSOR.search(before):
@@ -654,10 +654,14 @@ def _same_thing(
 _POSSESSOR = re.compile(r"\b(?:their|his|her)\s+(?:[\w'-]+[- ]){0,2}$", re.I)
 
 
-def _is_party(mention: Mention) -> bool:
+def _is_party_word(words: str) -> bool:
     """ "the third party", "the other party": a road user named by its part in the claim,
     which an apposition or its vehicle ("their van") later names properly."""
-    return mention.quote.lower().endswith("party")
+    return words.lower().endswith("party")
+
+
+def _is_party(mention: Mention) -> bool:
+    return _is_party_word(mention.quote)
 
 
 #: After a generic "the car": where it is from the ego, which names a new one.

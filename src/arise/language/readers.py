@@ -312,6 +312,7 @@ _PAIRS: tuple[dict[str, RelativePosition], ...] = (
     {"left": RelativePosition.ADJACENT_LANE_LEFT, "right": RelativePosition.ADJACENT_LANE_RIGHT},
     {"left": RelativePosition.CROSSING_FROM_LEFT, "right": RelativePosition.CROSSING_FROM_RIGHT},
 )
+_ROADSIDE, _ADJACENT, _CROSSING = _PAIRS
 #: A start of a side -> its pair, by the side said.
 _SIDED = {position: pair for pair in _PAIRS for position in pair.values()}
 #: A start of a side -> that side.
@@ -571,10 +572,10 @@ def read_position(
             else None
         )
     position = best[2]
-    if mention.cls.is_walker and position in _PAIRS[1].values():
+    if mention.cls.is_walker and position in _ADJACENT.values():
         # A walker "from the passenger side", "in the lane on the right": no walker starts
         # in a traffic lane; it stands at that kerb, or comes off it across the road.
-        pair = _PAIRS[0] if read_stationary(cast, mention) else _PAIRS[2]
+        pair = _ROADSIDE if read_stationary(cast, mention) else _CROSSING
         position = pair[_SIDE_OF[position]]
     return GroundedFact(
         name="spawn_position", value=position.value, source=FactSource.TEXT, quote=best[3]

@@ -9,8 +9,8 @@ and turns a trial's score into the feedback VerifAI's active samplers learn from
   `ELITE_SHARE` of the scores so far and the critical level (TTC 1 s, contact);
 - Bayesian optimisation (`bo`, needs GPyOpt) models the score itself and minimises it;
 - our own `surrogate` (`surrogate.py`) fits a Gaussian process to the scores and tries
-  where it expects the most gain; its uniform draws are VerifAI's random sampler's, so it starts exactly
-  where `random` does.
+  where it expects the most gain; its uniform draws are VerifAI's random sampler's, so it
+  starts exactly where `random` does.
 
 VerifAI draws from Python's and numpy's global random generators; each sampler keeps its
 own states and swaps them in around every call, so a search is reproducible from its
