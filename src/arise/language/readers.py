@@ -428,13 +428,18 @@ def _named_after(cast: Cast, mention: Mention, at: int) -> Mention | None:
     return max(before, key=lambda item: item[0])[1] if before else None
 
 
+def _walks_or_rides(mention: Mention) -> bool:
+    """A walker or a cyclist: one that comes out from between parked cars."""
+    return mention.cls in (ActorClass.PEDESTRIAN, ActorClass.BICYCLE)
+
+
 def _by_another(cast: Cast, mention: Mention) -> GroundedFact | None:
     """A start said by another actor whose start the text gives: a walker that steps out
     from behind (or in front of) a van parked on the left crosses from the left; a vehicle
     coming up behind a car in the lane to the left is in that lane too, and one behind an
     oncoming car is oncoming."""
     text = cast.text
-    walker = mention.cls in (ActorClass.PEDESTRIAN, ActorClass.BICYCLE)
+    walker = _walks_or_rides(mention)
     for start, end in words_of(cast, mention):
         for hit in rulebook().hits(Fact.BY_ANOTHER, text, start, min(len(text), end + 1)):
             other = _named_after(cast, mention, hit.end)
@@ -565,6 +570,12 @@ def read_position(
             )
             best = (target.start, -1, position, f"{lane_side.quote} ... {target.quote}")
     best = best or fallback or there
+    if by_another and best is not None and best[2] in _ALONG and _walks_or_rides(mention):
+        # "steps out from in front of it and walks across the ego's path": the side of
+        # the car it comes out by tells more than the path it crosses.
+        emerged = _by_another(cast, mention)
+        if emerged is not None:
+            return emerged
     if best is None:
         return (
             (_by_another(cast, mention) or _ego_verb_before(cast, mention, Fact.EGO_PASSES))
