@@ -167,6 +167,21 @@ def test_a_parked_actor_stays_put(kb: KnowledgeBase, maps: dict[str, frozenset[s
     assert set(truck.behavior.tags) & {"static", "stalled"}
 
 
+def test_a_vehicle_parked_in_a_lane_beside_the_ego_stands_at_that_kerb(
+    kb: KnowledgeBase, maps: dict[str, frozenset[str]]
+) -> None:
+    text = (
+        "A moped comes the other way while a box van is parked in the lane to the ego's"
+        " right, half on the pavement."
+    )
+    spec, found = retrieved(kb, maps, text, "A moped")
+    [van] = [a for a in spec.actors if a.role is ActorRole.PARKED]
+    assert van.start is RelativePosition.ADJACENT_LANE_RIGHT
+    [placed] = found.actors
+    assert placed.spawn.approach is not None and placed.spawn.approach.value == "roadside_right"
+    assert set(placed.behavior.tags) & {"static", "stalled"}
+
+
 def test_occluders_and_props_are_still_misc_entries(
     kb: KnowledgeBase, maps: dict[str, frozenset[str]]
 ) -> None:

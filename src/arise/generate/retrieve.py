@@ -733,11 +733,21 @@ CLASS_LENGTHS = {
 COPY_MARGIN = 3.0
 
 
+#: Where a parked vehicle said to be in a lane stands: at the kerb on that side ("parked
+#: in the lane ahead" at the near kerb, "parked on the right, partly in the lane" at the
+#: right kerb), since no spawn parks a car in a lane of traffic.
+PARKED_AT_KERB = {
+    RelativePosition.AHEAD_SAME_LANE: RelativePosition.ROADSIDE_RIGHT,
+    RelativePosition.ADJACENT_LANE_RIGHT: RelativePosition.ROADSIDE_RIGHT,
+    RelativePosition.ADJACENT_LANE_LEFT: RelativePosition.ROADSIDE_LEFT,
+}
+
+
 def _actor_start(actor: Actor) -> RelativePosition | None:
-    """Where to place the actor: its start, else its role's; a parked vehicle "ahead" is
-    at the kerb ahead."""
-    if actor.role is ActorRole.PARKED and actor.start is RelativePosition.AHEAD_SAME_LANE:
-        return RelativePosition.ROADSIDE_RIGHT
+    """Where to place the actor: its start, else its role's; a parked vehicle said to be
+    in a lane is at that side's kerb (`PARKED_AT_KERB`)."""
+    if actor.role is ActorRole.PARKED and actor.start in PARKED_AT_KERB:
+        return PARKED_AT_KERB[actor.start]
     return actor.start or ROLE_STARTS.get(actor.role)
 
 
