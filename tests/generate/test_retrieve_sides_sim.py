@@ -297,3 +297,49 @@ def test_a_car_parked_on_the_left_stands_at_the_left_kerb(
         _, adversary, relation = ego_and_adversary(simulation, chosen)
         assert relation.side == "left" and relation.ahead > 0, (chosen, seed, relation.describe())
         assert travel_heading(adversary) is None, (chosen, seed, "it moved")
+
+
+# (ego maneuver, stopped?, the lane beside the ego the adversary starts in, the geometry)
+NEIGHBOR_CASES = [
+    ("go_straight", True, RelativePosition.ADJACENT_LANE_RIGHT, "stopped_at_red_light_right"),
+    ("go_straight", True, RelativePosition.ADJACENT_LANE_LEFT, "stopped_at_red_light_left"),
+    ("go_straight", False, RelativePosition.ADJACENT_LANE_RIGHT, "junction_straight_right"),
+    ("go_straight", False, RelativePosition.ADJACENT_LANE_LEFT, "junction_straight_left"),
+    ("turn_left", False, RelativePosition.ADJACENT_LANE_RIGHT, "junction_left_turn_right"),
+    ("turn_right", False, RelativePosition.ADJACENT_LANE_LEFT, "junction_right_turn_left"),
+]
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize(("ego", "stopped", "position", "geometry"), NEIGHBOR_CASES)
+def test_a_vehicle_in_the_lane_beside_the_ego_at_a_junction_starts_there(
+    kb: KnowledgeBase,
+    maps: dict[str, frozenset[str]],
+    validator_pool: WorkerPool,
+    ego: str,
+    stopped: bool,
+    position: RelativePosition,
+    geometry: str,
+) -> None:
+    """A motorbike filtering up beside an ego held at the lights, a car in the next lane as
+    the ego turns: a junction with a same-direction lane beside the ego, and the road user
+    in that lane, level with the ego or behind it, going its way."""
+    spec = ScenarioSpec(
+        adversary_type="car",
+        adversary_class="Car",
+        behavior="drives along in its lane",
+        road_type="intersection",
+        ego_maneuver=ego,
+        ego_stopped=stopped,
+        geometry="a crossroads",
+        spawn_position=position,
+        spawn="in the lane beside the ego",
+    )
+    chosen, runs = simulated(spec, "Car", kb, maps, validator_pool)
+    assert f"geometry.{geometry}_neighbor" in chosen
+    side = "left" if position is RelativePosition.ADJACENT_LANE_LEFT else "right"
+    for seed, simulation in runs:
+        _, _, relation = ego_and_adversary(simulation, chosen)
+        where = (chosen, seed, relation.describe())
+        assert relation.side == side and relation.direction == "same", where
+        assert 2.0 < abs(relation.left) < 5.6, where

@@ -616,6 +616,24 @@ def _created_classes(entry: Entry) -> frozenset[str]:
     )
 
 
+def _created_count(entry: Entry) -> int:
+    """How many road users and props an entry's snippet creates."""
+    return sum(1 for name in _NEW_OBJECT.findall(entry.snippet) if name not in POINT_CLASSES)
+
+
+def _misc_fit(actor: Actor) -> Callable[[Entry], int]:
+    """How well a misc entry suits the actor beyond its words: an occluder entry for an
+    occluder, and as many objects as the text counts (one parked car is not a row of three;
+    "several cars" are)."""
+
+    def fit(entry: Entry) -> int:
+        made = _created_count(entry)
+        count = 2 * (made == actor.count or (actor.count > 1 and made > 1))
+        return count + (actor.role is ActorRole.OCCLUDER and "occluder" in entry.tags)
+
+    return fit
+
+
 def _add_extras(
     spec: ScenarioSpec,
     kb: KnowledgeBase,
@@ -665,7 +683,8 @@ def _add_extras(
             # cyclist riding ahead
             and (actor.start is None or approach_fit(actor.start, e.approach) <= Fit.UNSPECIFIC)
         ]
-        picked = _ranked(retriever, participant, Component.MISC, same_kind)[:1]
+        ranked = _ranked(retriever, participant, Component.MISC, same_kind)
+        picked = _prefer(ranked, _misc_fit(actor))[:1]
         if not picked:
             result.notes.append(f"misc: no entry places {participant!r}; left out")
         for entry in picked:
