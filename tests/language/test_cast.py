@@ -67,6 +67,13 @@ def test_the_first_numbered_vehicle_is_the_ego_when_none_is_called_autonomous() 
     assert [(m.cls.value, len(m.spans)) for m in cast.others] == [("Truck", 2)]
 
 
+def test_a_sentence_that_opens_with_vehicle_2_names_a_party_not_the_ego() -> None:
+    text = "Vehicle 2 was in the lane to the left and then moved over into Vehicle 1."
+    cast = parse(text)
+    assert [text[s.start : s.end] for s in cast.ego] == ["Vehicle 1"]
+    assert [m.quote for m in cast.others] == ["Vehicle 2"]
+
+
 @pytest.mark.parametrize(
     ("text", "named"),
     [

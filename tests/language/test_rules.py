@@ -35,6 +35,7 @@ def test_a_slot_value_is_checked_for_every_word_of_its_class() -> None:
         ("start", "adjacent_lane_{compass}", "<compass> lane"),  # no start is "..._north"
         ("heading", "{nowhere}", "northbound"),  # no such lexicon class
         ("requirement", "close", "near miss"),  # not a RequirementKind
+        ("start", "adjacent_lane_{side}", "undertakes"),  # no <side> to fill the value with
     ],
 )
 def test_a_value_the_fact_cannot_take_is_a_rule_error(fact: str, value: str, when: str) -> None:

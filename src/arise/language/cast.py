@@ -81,9 +81,13 @@ _AUTONOMOUS = re.compile(
 # "Unit 2, a hatchback in the right lane, struck the AV": "the AV" further on is another
 # party, not what the numbered one is ("V1 (the autonomous test vehicle)" is).
 _ANOTHER_AV = re.compile(r"^.{25,}\bthe\s+$", re.S)
-# NHTSA's typology names the ego "Vehicle" with no article, at a sentence's start.
-_NHTSA_EGO = re.compile(r"(?:^|(?<=[.;:]\s))Vehicle(?:'s)?\b")
-_NHTSA_EGO_ANYWHERE = re.compile(r"(?<![\w'])(?<!\bthe )(?<!\ba )(?<!\ban )Vehicle(?:'s)?\b")
+# NHTSA's typology names the ego "Vehicle" with no article, at a sentence's start; a
+# numbered "Vehicle 2" is a party like "V2" (`_NUMBERED`), never the bare name.
+_NOT_NUMBERED = r"(?!\s?#?\s?[1-9]\b)"
+_NHTSA_EGO = re.compile(r"(?:^|(?<=[.;:]\s))Vehicle(?:'s)?\b" + _NOT_NUMBERED)
+_NHTSA_EGO_ANYWHERE = re.compile(
+    r"(?<![\w'])(?<!\bthe )(?<!\ba )(?<!\ban )Vehicle(?:'s)?\b" + _NOT_NUMBERED
+)
 # In that style also a lower-case "vehicle" right after a preposition ("drifts into
 # vehicle's lane"): group 1.
 _NHTSA_EGO_AFTER_PREPOSITION = re.compile(

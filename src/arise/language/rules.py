@@ -297,6 +297,13 @@ def _check_value(rule: Rule, where: str) -> None:
     classes = lexicon().classes
     if any(slot not in classes for slot in slots):
         raise RuleError(f"{where}: rule {rule.id}: its value names no lexicon class")
+    for pattern in rule.when:
+        missing = [slot for slot in slots if f"<{slot}>" not in pattern]
+        if missing:
+            # the value could not be filled when this pattern matches
+            raise RuleError(
+                f"{where}: rule {rule.id}: pattern {pattern!r} has no <{missing[0]}> for its value"
+            )
     values = {rule.value}
     for slot in slots:
         values = {
