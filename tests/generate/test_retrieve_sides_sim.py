@@ -299,39 +299,90 @@ def test_a_car_parked_on_the_left_stands_at_the_left_kerb(
         assert travel_heading(adversary) is None, (chosen, seed, "it moved")
 
 
-# (ego maneuver, stopped?, the lane beside the ego the adversary starts in, the geometry)
+# (road, ego maneuver, stopped?, the lane beside the ego the adversary starts in, geometry)
 NEIGHBOR_CASES = [
-    ("go_straight", True, RelativePosition.ADJACENT_LANE_RIGHT, "stopped_at_red_light_right"),
-    ("go_straight", True, RelativePosition.ADJACENT_LANE_LEFT, "stopped_at_red_light_left"),
-    ("go_straight", False, RelativePosition.ADJACENT_LANE_RIGHT, "junction_straight_right"),
-    ("go_straight", False, RelativePosition.ADJACENT_LANE_LEFT, "junction_straight_left"),
-    ("turn_left", False, RelativePosition.ADJACENT_LANE_RIGHT, "junction_left_turn_right"),
-    ("turn_right", False, RelativePosition.ADJACENT_LANE_LEFT, "junction_right_turn_left"),
+    (
+        "intersection",
+        "go_straight",
+        True,
+        RelativePosition.ADJACENT_LANE_RIGHT,
+        "stopped_at_red_light_right",
+    ),
+    (
+        "intersection",
+        "go_straight",
+        True,
+        RelativePosition.ADJACENT_LANE_LEFT,
+        "stopped_at_red_light_left",
+    ),
+    (
+        "intersection",
+        "go_straight",
+        False,
+        RelativePosition.ADJACENT_LANE_RIGHT,
+        "junction_straight_right",
+    ),
+    (
+        "intersection",
+        "go_straight",
+        False,
+        RelativePosition.ADJACENT_LANE_LEFT,
+        "junction_straight_left",
+    ),
+    (
+        "intersection",
+        "turn_left",
+        False,
+        RelativePosition.ADJACENT_LANE_RIGHT,
+        "junction_left_turn_right",
+    ),
+    (
+        "intersection",
+        "turn_right",
+        False,
+        RelativePosition.ADJACENT_LANE_LEFT,
+        "junction_right_turn_left",
+    ),
+    (
+        "straight_road",
+        "go_straight",
+        True,
+        RelativePosition.ADJACENT_LANE_RIGHT,
+        "stopped_in_traffic_right",
+    ),
+    (
+        "straight_road",
+        "go_straight",
+        True,
+        RelativePosition.ADJACENT_LANE_LEFT,
+        "stopped_in_traffic_left",
+    ),
 ]
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize(("ego", "stopped", "position", "geometry"), NEIGHBOR_CASES)
-def test_a_vehicle_in_the_lane_beside_the_ego_at_a_junction_starts_there(
+@pytest.mark.parametrize(("road", "ego", "stopped", "position", "geometry"), NEIGHBOR_CASES)
+def test_a_vehicle_in_the_lane_beside_the_ego_starts_there(
     kb: KnowledgeBase,
     maps: dict[str, frozenset[str]],
     validator_pool: WorkerPool,
+    road: str,
     ego: str,
     stopped: bool,
     position: RelativePosition,
     geometry: str,
 ) -> None:
-    """A motorbike filtering up beside an ego held at the lights, a car in the next lane as
-    the ego turns: a junction with a same-direction lane beside the ego, and the road user
-    in that lane, level with the ego or behind it, going its way."""
+    """A motorbike filtering up beside an ego held at the lights or in a queue, a car in the
+    next lane as the ego turns: a geometry with a same-direction lane beside the ego, and
+    the road user in that lane, level with the ego or behind it, going its way."""
     spec = ScenarioSpec(
         adversary_type="car",
         adversary_class="Car",
         behavior="drives along in its lane",
-        road_type="intersection",
+        road_type=road,
         ego_maneuver=ego,
         ego_stopped=stopped,
-        geometry="a crossroads",
+        geometry="a crossroads" if road == "intersection" else "a multi-lane road",
         spawn_position=position,
         spawn="in the lane beside the ego",
     )
@@ -343,3 +394,27 @@ def test_a_vehicle_in_the_lane_beside_the_ego_at_a_junction_starts_there(
         where = (chosen, seed, relation.describe())
         assert relation.side == side and relation.direction == "same", where
         assert 2.0 < abs(relation.left) < 5.6, where
+
+
+@pytest.mark.slow
+def test_a_walker_in_the_egos_lane_stands_there(
+    kb: KnowledgeBase, maps: dict[str, frozenset[str]], validator_pool: WorkerPool
+) -> None:
+    spec = ScenarioSpec(
+        adversary_type="pedestrian",
+        adversary_class="Pedestrian",
+        behavior="stands in the road",
+        road_type="straight_road",
+        ego_maneuver="go_straight",
+        geometry="a two-way street",
+        spawn_position=RelativePosition.AHEAD_SAME_LANE,
+        spawn="in the ego's lane ahead",
+        adversary_stationary=True,
+    )
+    chosen, runs = simulated(spec, "Pedestrian", kb, maps, validator_pool)
+    assert "spawn.walker_in_lane_ahead" in chosen
+    for seed, simulation in runs:
+        _, adversary, relation = ego_and_adversary(simulation, chosen)
+        where = (chosen, seed, relation.describe())
+        assert relation.ahead > 0 and relation.side == "centre", where
+        assert travel_heading(adversary) is None, where
