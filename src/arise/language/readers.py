@@ -115,6 +115,7 @@ def words_of(cast: Cast, mention: Mention) -> list[tuple[int, int]]:
     inverted = [c for c in cast.clauses if c.inverted and isinstance(c.subject, Mention)]
     for span in mention.spans:
         lead = _passive_verb_start(text, phrase_start(text, span.start))
+        lead = _touched_part_start(cast, lead)
         opener = _fronted_participle(cast, lead)
         if opener is not None:
             stretches.append(opener)
@@ -226,6 +227,27 @@ def _passive_verb_start(text: str, lead: int) -> int:
     "is <verb> ... by" in the same clause, else at the phrase itself."""
     found = _PASSIVE_AGENT.search(text[max(0, lead - 60) : lead])
     return max(0, lead - 60) + found.start(1) if found else lead
+
+
+#: "<the ego's part> was <verb>": the part of the ego a passive clause is about.
+_PART_BEFORE_PASSIVE = re.compile(
+    r"^\s*(?:[\w-]+\s+){0,3}?(?:is|was|were|are|got|gets|has\s+been|had\s+been)\s+$", re.I
+)
+
+
+def _touched_part_start(cast: Cast, lead: int) -> int:
+    """Where the words about a passive agent begin when the clause's subject is a part of
+    the ego ("the AV's rear bumper was struck by a bus"): at that part, which tells where
+    the agent touched the ego; else `lead`."""
+    for span in cast.ego:
+        owner = cast.text[span.start : span.end]
+        if (
+            span.end <= lead
+            and owner.endswith(("'s", "\u2019s"))
+            and _PART_BEFORE_PASSIVE.match(cast.text[span.end : lead])
+        ):
+            return phrase_start(cast.text, span.start)
+    return lead
 
 
 def _squeezed_beside(cast: Cast, mention: Mention) -> GroundedFact | None:
