@@ -34,6 +34,8 @@ def _ego_words(text: str) -> list[str]:
         ),
         # The possessive of a name of the ego is the ego's, not another car's.
         ("The test vehicle's front wing was clipped by a scooter.", ["test vehicle's"]),
+        # In a driver's own claim, the vehicle they drive is the ego, whatever its kind.
+        ("Our lorry was sideswiped by a coach on the ring road.", ["Our lorry"]),
     ],
 )
 def test_the_ego_is_found_under_its_names(text: str, ego: list[str]) -> None:
