@@ -276,29 +276,6 @@ def test_a_walker_or_cyclist_from_the_left_at_a_junction_crosses_the_egos_road(
         assert where_placed.direction is Direction.CROSSING_LEFT_TO_RIGHT, where
 
 
-@pytest.mark.slow
-def test_a_car_parked_on_the_left_stands_at_the_left_kerb(
-    kb: KnowledgeBase, maps: dict[str, frozenset[str]], validator_pool: WorkerPool
-) -> None:
-    spec = ScenarioSpec(
-        adversary_type="car",
-        adversary_class="Car",
-        behavior="stands parked at the kerb",
-        road_type="straight_road",
-        ego_maneuver="go_straight",
-        geometry="a two-way street",
-        spawn_position=RelativePosition.ROADSIDE_LEFT,
-        spawn="parked on the left",
-        adversary_stationary=True,
-    )
-    chosen, runs = simulated(spec, "Car", kb, maps, validator_pool)
-    assert "spawn.parked_left_curb_ahead" in chosen
-    for seed, simulation in runs:
-        _, adversary, relation = ego_and_adversary(simulation, chosen)
-        assert relation.side == "left" and relation.ahead > 0, (chosen, seed, relation.describe())
-        assert travel_heading(adversary) is None, (chosen, seed, "it moved")
-
-
 # (road, ego maneuver, stopped?, the lane beside the ego the adversary starts in, geometry)
 NEIGHBOR_CASES = [
     (
@@ -396,25 +373,47 @@ def test_a_vehicle_in_the_lane_beside_the_ego_starts_there(
         assert 2.0 < abs(relation.left) < 5.6, where
 
 
+# (class, its type, where the text puts it, the spawn that must place it, the side seen)
+STANDING_CASES = [
+    ("Car", "car", RelativePosition.ROADSIDE_LEFT, "spawn.parked_left_curb_ahead", "left"),
+    (
+        "Pedestrian",
+        "pedestrian",
+        RelativePosition.AHEAD_SAME_LANE,
+        "spawn.walker_in_lane_ahead",
+        "centre",
+    ),
+]
+
+
 @pytest.mark.slow
-def test_a_walker_in_the_egos_lane_stands_there(
-    kb: KnowledgeBase, maps: dict[str, frozenset[str]], validator_pool: WorkerPool
+@pytest.mark.parametrize(("cls", "kind", "position", "spawn", "side"), STANDING_CASES)
+def test_a_road_user_said_to_stand_still_stands_where_the_text_puts_it(
+    kb: KnowledgeBase,
+    maps: dict[str, frozenset[str]],
+    validator_pool: WorkerPool,
+    cls: str,
+    kind: str,
+    position: RelativePosition,
+    spawn: str,
+    side: str,
 ) -> None:
+    """A car parked at the left kerb; a walker standing in the ego's lane ahead."""
     spec = ScenarioSpec(
-        adversary_type="pedestrian",
-        adversary_class="Pedestrian",
-        behavior="stands in the road",
+        adversary_type=kind,
+        adversary_class=cls,
+        behavior="stays where it is",
         road_type="straight_road",
         ego_maneuver="go_straight",
         geometry="a two-way street",
-        spawn_position=RelativePosition.AHEAD_SAME_LANE,
-        spawn="in the ego's lane ahead",
+        spawn_position=position,
+        spawn="where it stands",
         adversary_stationary=True,
     )
-    chosen, runs = simulated(spec, "Pedestrian", kb, maps, validator_pool)
-    assert "spawn.walker_in_lane_ahead" in chosen
+    chosen, runs = simulated(spec, cls, kb, maps, validator_pool)
+    assert spawn in chosen
     for seed, simulation in runs:
         _, adversary, relation = ego_and_adversary(simulation, chosen)
         where = (chosen, seed, relation.describe())
-        assert relation.ahead > 0 and relation.side == "centre", where
+        assert relation.ahead > 0 and relation.side == side, where
         assert travel_heading(adversary) is None, where
