@@ -61,6 +61,7 @@ DEV_FILES = (
     "fresh2.jsonl",
     "fresh3.jsonl",
     "fresh4.jsonl",
+    "placement.jsonl",
 )
 
 

@@ -95,6 +95,8 @@ class DevSet(StrEnum):
     FRESH3 = "fresh3"
     # a fourth probe, written 2026-11-29 and first scored on a change it was not written for
     FRESH4 = "fresh4"
+    # placement probes of our own: two roles, parked and stalled, lanes beside the ego
+    PLACEMENT = "placement"
     # tests/heldapart: measured only, never tuned on (its README states the rule)
     HELDAPART = "heldapart"
 
@@ -109,6 +111,7 @@ DEVSET_FILES: dict[DevSet, str] = {
     DevSet.FRESH2: "fresh2.jsonl",
     DevSet.FRESH3: "fresh3.jsonl",
     DevSet.FRESH4: "fresh4.jsonl",
+    DevSet.PLACEMENT: "placement.jsonl",
 }
 
 
