@@ -229,7 +229,9 @@ def _passive_verb_start(text: str, lead: int) -> int:
     return max(0, lead - 60) + found.start(1) if found else lead
 
 
-#: "<the ego's part> was <verb>": the part of the ego a passive clause is about.
+#: "<the ego's part> was <verb>": the part of the ego a passive clause is about, named at
+#: most this many characters before the verb.
+_PART_REACH = 60
 _PART_BEFORE_PASSIVE = re.compile(
     r"^\s*(?:[\w-]+\s+){0,3}?(?:is|was|were|are|got|gets|has\s+been|had\s+been)\s+$", re.I
 )
@@ -242,7 +244,7 @@ def _touched_part_start(cast: Cast, lead: int) -> int:
     for span in cast.ego:
         owner = cast.text[span.start : span.end]
         if (
-            span.end <= lead
+            0 <= lead - span.end <= _PART_REACH
             and owner.endswith(("'s", "\u2019s"))
             and _PART_BEFORE_PASSIVE.match(cast.text[span.end : lead])
         ):
