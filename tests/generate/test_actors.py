@@ -158,28 +158,36 @@ def test_an_oncoming_bus_gets_a_geometry_with_an_oncoming_lane(
     assert found.chosen[Component.MISC] == []
 
 
-def test_a_parked_actor_stays_put(kb: KnowledgeBase, maps: dict[str, frozenset[str]]) -> None:
-    text = "A car pulls out in front of the ego while a truck is parked on the right."
-    spec, found = retrieved(kb, maps, text, "A car")
-    [truck] = found.actors
-    assert truck.actor.role is ActorRole.PARKED
-    assert truck.spawn.approach is not None and truck.spawn.approach.value == "roadside_right"
-    assert set(truck.behavior.tags) & {"static", "stalled"}
-
-
-def test_a_vehicle_parked_in_a_lane_beside_the_ego_stands_at_that_kerb(
-    kb: KnowledgeBase, maps: dict[str, frozenset[str]]
+@pytest.mark.parametrize(
+    ("text", "adversary", "read"),
+    [
+        (
+            "A car pulls out in front of the ego while a truck is parked on the right.",
+            "A car",
+            RelativePosition.ROADSIDE_RIGHT,
+        ),
+        # parked "in the lane" beside the ego: no spawn parks a car in a lane of traffic
+        (
+            "A moped comes the other way while a box van is parked in the lane to the ego's"
+            " right, half on the pavement.",
+            "A moped",
+            RelativePosition.ADJACENT_LANE_RIGHT,
+        ),
+    ],
+)
+def test_a_parked_actor_stays_put_at_the_kerb_of_its_side(
+    kb: KnowledgeBase,
+    maps: dict[str, frozenset[str]],
+    text: str,
+    adversary: str,
+    read: RelativePosition,
 ) -> None:
-    text = (
-        "A moped comes the other way while a box van is parked in the lane to the ego's"
-        " right, half on the pavement."
-    )
-    spec, found = retrieved(kb, maps, text, "A moped")
-    [van] = [a for a in spec.actors if a.role is ActorRole.PARKED]
-    assert van.start is RelativePosition.ADJACENT_LANE_RIGHT
-    [placed] = found.actors
-    assert placed.spawn.approach is not None and placed.spawn.approach.value == "roadside_right"
-    assert set(placed.behavior.tags) & {"static", "stalled"}
+    _, found = retrieved(kb, maps, text, adversary)
+    [parked] = found.actors
+    assert parked.actor.role is ActorRole.PARKED
+    assert parked.actor.start is read
+    assert parked.spawn.approach is not None and parked.spawn.approach.value == "roadside_right"
+    assert set(parked.behavior.tags) & {"static", "stalled"}
 
 
 def test_occluders_and_props_are_still_misc_entries(
