@@ -609,16 +609,14 @@ def _scene_without_adversary(
 _NEW_OBJECT = re.compile(r"\bnew (\w+)")
 
 
+def _created(entry: Entry) -> list[str]:
+    """The class of each road user and prop an entry's snippet creates, once per object."""
+    return [name for name in _NEW_OBJECT.findall(entry.snippet) if name not in POINT_CLASSES]
+
+
 def _created_classes(entry: Entry) -> frozenset[str]:
     """The classes of road users and props an entry's snippet creates."""
-    return frozenset(
-        name for name in _NEW_OBJECT.findall(entry.snippet) if name not in POINT_CLASSES
-    )
-
-
-def _created_count(entry: Entry) -> int:
-    """How many road users and props an entry's snippet creates."""
-    return sum(1 for name in _NEW_OBJECT.findall(entry.snippet) if name not in POINT_CLASSES)
+    return frozenset(_created(entry))
 
 
 def _misc_fit(actor: Actor) -> Callable[[Entry], int]:
@@ -627,7 +625,7 @@ def _misc_fit(actor: Actor) -> Callable[[Entry], int]:
     "several cars" are)."""
 
     def fit(entry: Entry) -> int:
-        made = _created_count(entry)
+        made = len(_created(entry))
         count = 2 * (made == actor.count or (actor.count > 1 and made > 1))
         return count + (actor.role is ActorRole.OCCLUDER and "occluder" in entry.tags)
 
