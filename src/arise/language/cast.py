@@ -35,7 +35,13 @@ _COUNT_WORDS = {
     "pair of": 2,
     "couple of": 2,
 }
-_COUNT = re.compile(r"\b(two|three|four|five|six|\d|pair of|couple of)\s+(?:\w+[- ]){0,2}$", re.I)
+# A count a few modifiers before the noun; not a lane's number ("#3 lane as V2") and not
+# across a joining word.
+_COUNT = re.compile(
+    r"(?<!#)\b(two|three|four|five|six|\d|pair of|couple of)\s+"
+    r"(?:(?!(?:as|and|when|while|then|to|from|in|into|on|at|lane|lanes)\b)\w+[- ]){0,2}$",
+    re.I,
+)
 _NEW = re.compile(r"\b(?:a|an|another|second|third|one|some|other)\s+(?:[\w'-]+[- ]){0,3}$", re.I)
 _DEFINITE = re.compile(r"\b(?:the|that|this|its|their|his|her)\s+(?:[\w'-]+[- ]){0,3}$", re.I)
 # "both vehicles", "no other vehicle": a summary or a negation, not one more thing.
@@ -694,6 +700,13 @@ def _bare_modifiers() -> frozenset[str]:
 #: A pronoun is a phrase of its own: "the AV's right as | it" does not open at "the".
 # Pronouns take no article: "on the motorway you ..." opens no phrase at "the".
 _NO_ARTICLE = re.compile(r"(?:it|they|them|he|she|him|her|i|we|you|me|us)\b", re.I)
+#: Words a noun phrase's modifiers never hold: the phrase of "V2" in "the #3 lane as V2"
+#: starts after "as", not at "the".
+_PHRASE_STOP = re.compile(
+    r"^(?:as|and|or|but|when|while|then|that|which|who|to|from|in|into|on|onto|at|by|"
+    r"with|for|was|were|is|are|has|had|lane|lanes)$",
+    re.I,
+)
 
 
 def phrase_start(text: str, start: int) -> int:
@@ -704,8 +717,8 @@ def phrase_start(text: str, start: int) -> int:
     before = text[max(0, start - 40) : start]
     words = list(re.finditer(r"[\w'-]+", before))[-4:]
     for word in reversed(words):
-        if re.search(r"[.;,!?]", before[word.end() :]):
-            break  # the phrase does not reach across punctuation
+        if re.search(r"[.;,!?]", before[word.end() :]) or _PHRASE_STOP.match(word.group(0)):
+            break  # the phrase does not reach across punctuation or a joining word
         if (
             _DETERMINER.match(word.group(0))
             and not before[: word.start()].endswith("#")  # "#2 lane" is a lane's number

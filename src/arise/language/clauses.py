@@ -18,6 +18,7 @@ from __future__ import annotations
 import re
 
 from arise.language.cast import Cast, Clause, Mention, Span, phrase_start
+from arise.language.lexicon import class_pattern
 
 Actor = Mention | str  # a Mention, or "ego"
 
@@ -141,6 +142,31 @@ def _follows_its_verb(
     return False
 
 
+# A sentence that opens with one of these words opens with a clause of its own
+# ("When it is clear, pull out"): the clause after its comma is the sentence's main one.
+_SUBORDINATE = re.compile(
+    r"\s*(?:when|whenever|once|if|as soon as|before|after|while|until|as|since|unless)\b", re.I
+)
+# A verb of the imperative class used as a noun or a modifier ("stop sign", "turn signal").
+_NOT_IMPERATIVE = re.compile(
+    r"\s+(?:sign|signs|line|lines|light|lights|signal|signals|bar|bars|lane|lanes|arrow|arrows)\b",
+    re.I,
+)
+
+
+def _imperative(text: str, start: int, end: int) -> bool:
+    """Whether the clause [start, end) opens with a bare verb of instruction ("check your
+    mirror", "then move over"): an order to the driver, so the ego's."""
+    head = _LEAD_WORDS.match(text, start)
+    first = head.end() if head else start
+    found = class_pattern("imperative").match(text, first, end)
+    if found is None:
+        return False
+    lanes = found.group(0).lower() in ("change", "switch", "swap")  # "change lanes"
+    noun = _NOT_IMPERATIVE.match(text, found.end())
+    return noun is None or (lanes and noun.group(0).strip().lower().startswith("lane"))
+
+
 def _actor_ending_at(spans: list[tuple[Span, Actor]], text: str, position: int) -> Actor | None:
     """The actor whose span ends just before `position` (spaces and a comma aside)."""
     gap = re.search(r"[\s,]*$", text[:position])
@@ -168,12 +194,22 @@ def read_clauses(cast: Cast) -> list[Clause]:
             cuts.append((found.start(1), found.start(1), "~participle"))
     cuts.sort()
     clauses: list[Clause] = []
+    sentence = 0  # where the current sentence starts
     for index, (_, begin, opener) in enumerate(cuts):
         end = cuts[index + 1][0] if index + 1 < len(cuts) else len(text)
+        if opener in _SENTENCE_END or opener in ("", ":"):
+            sentence = begin
         if not text[begin:end].strip():
             continue
         subject: Actor | None
-        if opener in _RELATIVE or opener == "~participle":
+        ordered = _imperative(text, begin, end) and (
+            sentence == begin or (opener == "," and _SUBORDINATE.match(text, sentence) is not None)
+        )
+        if ordered:
+            subject = "ego"  # "Check your mirror", "When it is clear, pull out"
+        elif _imperative(text, begin, end) and opener not in _RELATIVE:
+            subject = None  # "... and overtake the tractor": the tractor is its object
+        elif opener in _RELATIVE or opener == "~participle":
             subject = _actor_ending_at(
                 spans, text, cuts[index][0] if opener != "~participle" else begin
             )

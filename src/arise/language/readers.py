@@ -774,6 +774,20 @@ def read_ego_overtaking(reading: Reading) -> None:
         return
 
 
+_LANE_NUMBERS = re.compile(r"\b(\d)\b\D+\b(\d)\b")
+
+
+def _numbered_lane_change(cast: Cast, words: str) -> tuple[str, str] | None:
+    """The side of a move between numbered lanes ("from the #2 lane to the #1 lane"):
+    lanes count from the left unless the text counts them from the right."""
+    numbers = _LANE_NUMBERS.search(words)
+    if numbers is None or numbers.group(1) == numbers.group(2):
+        return None
+    from_right = rulebook().first(Fact.LANE_ORDER, cast.text) is not None
+    right = (int(numbers.group(2)) > int(numbers.group(1))) != from_right
+    return ("right" if right else "left", words)
+
+
 def read_maneuvers(reading: Reading) -> None:
     """The ego's maneuver and the adversary's turn, each from verbs about that actor."""
     cast = reading.cast
@@ -810,12 +824,14 @@ def read_maneuvers(reading: Reading) -> None:
             name="ego_maneuver", value=ego[0].value, source=FactSource.TEXT, quote=ego[1]
         )
     if ego is not None and ego[0] is EgoManeuver.CHANGE_LANE:
+        side = _numbered_lane_change(cast, ego[1])
         for hit in rulebook().hits(Fact.LANE_SIDE, cast.text):
-            if subject_of(cast, hit.start) == "ego":
-                reading.facts["ego_lane_side"] = GroundedFact(
-                    name="ego_lane_side", value=hit.value, source=FactSource.TEXT, quote=hit.quote
-                )
-                break
+            if side is None and subject_of(cast, hit.start) == "ego":
+                side = (hit.value, hit.quote)
+        if side is not None:
+            reading.facts["ego_lane_side"] = GroundedFact(
+                name="ego_lane_side", value=side[0], source=FactSource.TEXT, quote=side[1]
+            )
     if adversary is not None:
         reading.facts["adversary_maneuver"] = GroundedFact(
             name="adversary_maneuver",
