@@ -417,3 +417,32 @@ def test_a_road_user_said_to_stand_still_stands_where_the_text_puts_it(
         where = (chosen, seed, relation.describe())
         assert relation.ahead > 0 and relation.side == side, where
         assert travel_heading(adversary) is None, where
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("behavior", ["slows down in front of the ego and blocks it", "brakes hard"])
+def test_a_lead_in_the_egos_lane_goes_straight_over_the_crossroads_with_the_ego(
+    kb: KnowledgeBase,
+    maps: dict[str, frozenset[str]],
+    validator_pool: WorkerPool,
+    behavior: str,
+) -> None:
+    """A truck ahead in the ego's lane as both go straight over a crossroads: inside the
+    junction its lane follower restarts, and must keep the lane it was given, not one of
+    the overlapping turning lanes there."""
+    spec = ScenarioSpec(
+        adversary_type="truck",
+        adversary_class="Truck",
+        behavior=behavior,
+        road_type="intersection",
+        ego_maneuver="go_straight",
+        geometry="a crossroads with traffic lights",
+        spawn_position=RelativePosition.AHEAD_SAME_LANE,
+        spawn="ahead of the ego in its lane",
+    )
+    chosen, runs = simulated(spec, "Truck", kb, maps, validator_pool)
+    for seed, simulation in runs:
+        _, adversary, relation = ego_and_adversary(simulation, chosen)
+        where = (chosen, seed, relation.describe())
+        assert relation.ahead > 0 and relation.side == "centre", where
+        assert adversary_turn(adversary) is AdversaryManeuver.STRAIGHT, where

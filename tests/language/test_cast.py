@@ -90,6 +90,10 @@ def test_a_sentence_that_opens_with_vehicle_2_names_a_party_not_the_ego() -> Non
         # the ego's own driver and the driver of a named vehicle are no road users
         ("The AV's safety driver braked as the driver of a van opened a door.", [("Van", 1)]),
         ("A box truck stopped ahead; a box fell off it.", [("Truck", 1), ("Box", 1)]),
+        # "stop" after a plural noun is its verb; the place is "the taxi stop"
+        ("Two vans stop at the line as the ego waits at the taxi stop.", [("Van", 2)]),
+        # a lane's number is no count, and a phrase does not reach back across "as"
+        ("V1 moved from the #1 lane to the #3 lane as V2 came up on the right.", [("Car", 1)]),
     ],
 )
 def test_road_users_are_named_once_with_their_class(

@@ -57,6 +57,17 @@ def _subject_of(text: str, words: str) -> str | None:
         ("SV waits at red. Moto filters up, clips SV R mirror.", "clips", "Moto"),
         # a pronoun after a fronted phrase is still the subject
         ("On the ring road you change lanes to the right.", "change lanes", "ego"),
+        # an instruction to the driver is the ego's, and so is the clause opening its
+        # sentence; a road user after the instruction's verb is its object
+        (
+            "Before pulling into the right lane to pass a horsebox, glance over your shoulder.",
+            "pulling into",
+            "ego",
+        ),
+        ("When the road is clear, ease out and overtake the milk float.", "overtake", "ego"),
+        ("Stop sign at the crossroads, a coach waits.", "waits", "a coach"),
+        # a base verb after two road users is theirs (no instruction)
+        ("Two joggers stop at the kerb and cross.", "cross", "Two joggers"),
     ],
 )
 def test_each_verb_has_the_subject_of_its_clause(text: str, words: str, subject: str) -> None:

@@ -337,7 +337,11 @@ def read_cast(text: str) -> Cast:
         if kind == "noun" and following and end + following.end() in noun_starts:
             continue
         after = text[end:]
-        if kind in ("noun", "make") and _not_an_actor(after, lex.not_an_actor_before):
+        if (
+            kind in ("noun", "make")
+            and _not_an_actor(after, lex.not_an_actor_before)
+            and not (_is_plural(text[start:end], cls) and _VERB_AFTER_PLURAL.match(after))
+        ):
             continue
         if kind == "noun" and _qualified(text[:start], lex.not_an_actor_after):
             continue  # "the junction box" is no box
@@ -403,6 +407,11 @@ def _owner_of(text: str, vehicle: Mention, start: int) -> bool:
     """ "Car of other person", "the van of a man": the person owns the vehicle just named,
     no road user of their own."""
     return vehicle.cls in VEHICLE_CLASSES and bool(_OWNER.match(text[vehicle.end : start]))
+
+
+#: After a plural noun these words are its verb, not a place it names ("two cars stop",
+#: but "the taxi stop").
+_VERB_AFTER_PLURAL = re.compile(r"[\s-]+(?:stop|park|signal)\b", re.I)
 
 
 def _not_an_actor(after: str, words: tuple[str, ...]) -> bool:
