@@ -428,3 +428,26 @@ def test_an_ego_said_to_go_straight_gets_no_geometry_of_any_route(kb, bm25) -> N
     assert any(
         "any_route" in e.tags for e in kb.entries.values() if e.component is Component.GEOMETRY
     )
+
+
+@pytest.mark.parametrize("back", [False, True])
+def test_a_walker_goes_back_the_way_it_came_only_where_the_text_says_so(
+    kb, bm25, back: bool
+) -> None:
+    """ "A pedestrian steps out in front of the ego" carries on across; only a walker read
+    as stepping back gets a behavior that returns to the kerb (in the trace, one that
+    returns looks like one that turned round)."""
+    spec = ScenarioSpec(
+        adversary_type="pedestrian",
+        adversary_class="Pedestrian",
+        behavior="steps out into the road in front of the ego",
+        road_type="straight_road",
+        ego_maneuver="go_straight",
+        geometry="a two-way street",
+        spawn_position=RelativePosition.CROSSING_FROM_RIGHT,
+        spawn="from the right-hand pavement",
+        adversary_turns_back=back,
+    )
+    result = retrieve(spec, kb, bm25, MAPS)
+    chosen = result.chosen[Component.BEHAVIOR][0]
+    assert ("turns_back" in chosen.tags) is back, chosen.id

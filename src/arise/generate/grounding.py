@@ -287,6 +287,7 @@ def ground(description: str, answer: ExtractionAnswer, read: Reading | None = No
         spawn=free_text["spawn"],
         adversary_maneuver=AdversaryManeuver(facts["adversary_maneuver"].value),
         adversary_stationary="adversary_stationary" in facts,
+        adversary_turns_back="adversary_turns_back" in facts,
         ego_stopped="ego_stopped" in facts,
         ego_on_ramp="ego_on_ramp" in facts,
         quantities_stated="unread_measure" in facts,

@@ -122,6 +122,8 @@ SIDE_APPROACHES: dict[RelativePosition, tuple[frozenset[Approach], frozenset[App
 MAX_MISC = 3
 #: Behavior tags of an adversary that does not move (stalled, parked as a hazard).
 STATIONARY_TAGS = frozenset({"static", "stalled"})
+#: Behavior tag of a road user that goes back the way it came (a walker stepping back).
+TURNS_BACK_TAG = "turns_back"
 #: A behavior that stands still until the ego comes near (`while (distance from ego to X) >`).
 WAITS_FOR_EGO = re.compile(r"while \(distance from (?:ego to \w+|self to ego)\) >")
 #: Components whose candidate lists are pools to drop from, not ranked fall-backs.
@@ -517,6 +519,13 @@ def retrieve(
         # Said to cross from a side or a corner: it crosses from the start, it does not walk
         # along the kerb first (the trace would read it going the ego's way).
         behaviors = _prefer(behaviors, lambda e: -int(ALONG_FIRST_TAG in e.tags))
+    # Going back the way it came only where the text says so: a walker who steps out and
+    # is read as stepping back looks, in the trace, like one who turned round.
+    back = [e for e in behaviors if TURNS_BACK_TAG in e.tags]
+    if spec.adversary_turns_back:
+        behaviors = back + [e for e in behaviors if e not in back]
+    elif len(back) < len(behaviors):
+        behaviors = [e for e in behaviors if e not in back]
     pools = [behaviors]
     if spec.adversary_stationary:
         # Parked, stalled or stopped in the text: a behavior that stays put, if one fits.

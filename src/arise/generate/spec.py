@@ -140,6 +140,10 @@ class ScenarioSpec(BaseModel):
     adversary_stationary: bool = Field(
         default=False, description="the text says the adversary is parked, stalled or stopped"
     )
+    adversary_turns_back: bool = Field(
+        default=False,
+        description="the text says the adversary goes back the way it came (steps back)",
+    )
     ego_lane_side: Side | None = Field(
         default=None, description="the side the ego changes lanes to, if the text says"
     )

@@ -57,6 +57,8 @@ def read_facts(description: str) -> dict[str, dict[str, str]]:
         for name in ("adversary_maneuver", "start_detail"):
             if name in reading.facts:
                 adversary[name] = reading.facts[name].value
+        if "adversary_turns_back" in reading.facts:
+            adversary[Fact.TURNS_BACK.value] = reading.facts["adversary_turns_back"].value
         if "adversary_speed" in reading.facts:
             adversary["speed"] = reading.facts["adversary_speed"].value
         if "spawn_position" in reading.facts:  # after the readers of the whole scene

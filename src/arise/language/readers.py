@@ -990,6 +990,20 @@ def read_stationary(cast: Cast, mention: Mention) -> GroundedFact | None:
     return None
 
 
+def read_turns_back(cast: Cast, mention: Mention) -> GroundedFact | None:
+    """Whether the words about a walker send it back the way it came ("steps back onto the
+    kerb", "changes her mind"); a vehicle that "goes back" returns to a lane."""
+    if mention.cls is not ActorClass.PEDESTRIAN:
+        return None
+    for start, end in words_of(cast, mention):
+        back = rulebook().first(Fact.TURNS_BACK, cast.text, start, end)
+        if back is not None:
+            return GroundedFact(
+                name="adversary_turns_back", value="true", source=FactSource.TEXT, quote=back.quote
+            )
+    return None
+
+
 # -- who is the adversary -------------------------------------------------------------------
 
 
@@ -1080,6 +1094,9 @@ def read_description(description: str, adversary_quote: str | None = None) -> Re
         stationary = read_stationary(cast, adversary)
         if stationary is not None:
             reading.facts["adversary_stationary"] = stationary
+        back = read_turns_back(cast, adversary)
+        if back is not None:
+            reading.facts["adversary_turns_back"] = back
     read_maneuvers(reading)
     read_ego_overtaking(reading)
     read_start_detail(reading)

@@ -53,6 +53,7 @@ class Fact(StrEnum):
     START_DETAIL = "start_detail"  # which end of the lane beside the ego (a StartDetail)
     STATIONARY = "stationary"  # the actor stays put ("parked", "stalled")
     MOVING = "moving"  # words that move it ("pulls out", "crosses")
+    TURNS_BACK = "turns_back"  # it goes back the way it came ("steps back onto the kerb")
     TURN = "turn"  # which way an actor goes: turn_left, turn_right, straight, change_lane
     LANE_SIDE = "lane_side"  # the side an actor's lane change goes to
     EGO_PLAN = "ego_plan"  # what the ego does besides its route (an EgoPlan)
@@ -245,6 +246,7 @@ def _values(fact: Fact) -> frozenset[str] | None:
         Fact.EGO_PLAN: frozenset(EgoPlan),
         Fact.STATIONARY: frozenset({"true"}),
         Fact.MOVING: frozenset({"true"}),
+        Fact.TURNS_BACK: frozenset({"true"}),
         Fact.EGO_HELD: frozenset({"true"}),
         Fact.EGO_ON_RAMP: frozenset({"true"}),
         Fact.ROAD: frozenset({*RoadType, "mid_block"}),
