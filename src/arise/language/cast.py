@@ -150,6 +150,9 @@ class Clause:
     # The subject comes after its verb, a place opening the clause ("from the left is
     # coming a bus"): the words before it are about it.
     inverted: bool = False
+    # It opens with a bare verb of instruction ("then pull out around it"), and no subject
+    # of its own: in a text that speaks to "you", the ego's.
+    imperative: bool = False
 
 
 @dataclass(frozen=True)

@@ -194,6 +194,7 @@ def read_clauses(cast: Cast) -> list[Clause]:
             cuts.append((found.start(1), found.start(1), "~participle"))
     cuts.sort()
     clauses: list[Clause] = []
+    instruction = False
     sentence = 0  # where the current sentence starts
     for index, (_, begin, opener) in enumerate(cuts):
         end = cuts[index + 1][0] if index + 1 < len(cuts) else len(text)
@@ -202,12 +203,13 @@ def read_clauses(cast: Cast) -> list[Clause]:
         if not text[begin:end].strip():
             continue
         subject: Actor | None
+        instruction = False
         ordered = _imperative(text, begin, end) and (
             sentence == begin or (opener == "," and _SUBORDINATE.match(text, sentence) is not None)
         )
         if ordered:
             subject = "ego"  # "Check your mirror", "When it is clear, pull out"
-        elif _imperative(text, begin, end) and opener not in _RELATIVE:
+        elif instruction := (_imperative(text, begin, end) and opener not in _RELATIVE):
             subject = None  # "... and overtake the tractor": the tractor is its object
         elif opener in _RELATIVE or opener == "~participle":
             subject = _actor_ending_at(
@@ -219,7 +221,15 @@ def read_clauses(cast: Cast) -> list[Clause]:
             subject = _opening_actor(cast, spans, begin, end)
         inverted = _follows_its_verb(cast, spans, subject, begin, end)
         clauses.append(
-            Clause(begin, end, opener, subject, explicit=subject is not None, inverted=inverted)
+            Clause(
+                begin,
+                end,
+                opener,
+                subject,
+                explicit=subject is not None,
+                inverted=inverted,
+                imperative=subject is None and instruction,
+            )
         )
     return _carry_subjects(clauses, text, spans)
 
@@ -266,6 +276,10 @@ def _carry_subjects(
 ) -> list[Clause]:
     """Give each subjectless clause the subject it continues (see the module's docstring)."""
     done: list[Clause] = []
+    addressed = any(
+        actor == "ego" and text[span.start : span.end].lower().startswith("you")
+        for span, actor in spans
+    )
     main: Actor | None = None  # the subject of the last clause that is not a relative one
     pending: list[int] = []  # a sentence's opening clauses without a subject yet
     sentence_open = True
@@ -282,6 +296,15 @@ def _carry_subjects(
             sentence_open = False
             continue
         opens_with_pronoun = _PRONOUN.match(text, clause.start, clause.end) is not None
+        if clause.imperative and addressed and not _agrees(main, plural=True):
+            # "Wait until the bike has gone by, then pull out": spoken to the driver
+            main = "ego"
+            for index in pending:
+                done[index] = _with(done[index], "ego")
+            pending = []
+            sentence_open = False
+            done.append(_with(clause, "ego"))
+            continue
         if sentence_open and not opens_with_pronoun:
             pending.append(len(done))
             done.append(clause)
