@@ -68,6 +68,13 @@ def _subject_of(text: str, words: str) -> str | None:
         ("Stop sign at the crossroads, a coach waits.", "waits", "a coach"),
         # a base verb after two road users is theirs (no instruction)
         ("Two joggers stop at the kerb and cross.", "cross", "Two joggers"),
+        # spoken to "you", an instruction is the ego's even after a clause about another
+        (
+            "You sit behind the skip lorry. Wait until the cyclist has gone by, then pull out.",
+            "pull out",
+            "ego",
+        ),
+        ("You wait as two joggers stop and cross.", "cross", "two joggers"),
     ],
 )
 def test_each_verb_has_the_subject_of_its_clause(text: str, words: str, subject: str) -> None:
