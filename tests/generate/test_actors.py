@@ -229,6 +229,26 @@ def test_oncoming_traffic_at_a_junction_gets_the_far_approach_not_the_adversarys
     assert taxi.spawn.actor == "actor2"
 
 
+@pytest.mark.parametrize(
+    ("text", "entry"),
+    [
+        (
+            "Three cardboard boxes lie across the ego's lane as a van comes the other way.",
+            "misc.boxes_across_lane_ahead",
+        ),
+        (
+            "A cardboard box lies in the ego's lane as a van comes the other way.",
+            "misc.box_in_lane_ahead",
+        ),
+    ],
+)
+def test_a_counted_prop_is_placed_as_many_times_as_the_text_counts(
+    kb: KnowledgeBase, maps: dict[str, frozenset[str]], text: str, entry: str
+) -> None:
+    _, found = retrieved(kb, maps, text, "a van")
+    assert [e.id for e in found.chosen[Component.MISC]] == [entry]
+
+
 def test_no_misc_entry_puts_an_actor_where_the_text_does_not(
     kb: KnowledgeBase, maps: dict[str, frozenset[str]]
 ) -> None:
