@@ -420,7 +420,9 @@ def test_a_road_user_said_to_stand_still_stands_where_the_text_puts_it(
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("behavior", ["slows down in front of the ego and blocks it", "brakes hard"])
+@pytest.mark.parametrize(
+    "behavior", ["slows down in front of the ego and blocks it", "brakes hard"]
+)
 def test_a_lead_in_the_egos_lane_goes_straight_over_the_crossroads_with_the_ego(
     kb: KnowledgeBase,
     maps: dict[str, frozenset[str]],
