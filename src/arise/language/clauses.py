@@ -194,7 +194,6 @@ def read_clauses(cast: Cast) -> list[Clause]:
             cuts.append((found.start(1), found.start(1), "~participle"))
     cuts.sort()
     clauses: list[Clause] = []
-    instruction = False
     sentence = 0  # where the current sentence starts
     for index, (_, begin, opener) in enumerate(cuts):
         end = cuts[index + 1][0] if index + 1 < len(cuts) else len(text)
@@ -203,13 +202,12 @@ def read_clauses(cast: Cast) -> list[Clause]:
         if not text[begin:end].strip():
             continue
         subject: Actor | None
-        instruction = False
-        ordered = _imperative(text, begin, end) and (
+        instruction = _imperative(text, begin, end) and opener not in _RELATIVE
+        if instruction and (
             sentence == begin or (opener == "," and _SUBORDINATE.match(text, sentence) is not None)
-        )
-        if ordered:
+        ):
             subject = "ego"  # "Check your mirror", "When it is clear, pull out"
-        elif instruction := (_imperative(text, begin, end) and opener not in _RELATIVE):
+        elif instruction:
             subject = None  # "... and overtake the tractor": the tractor is its object
         elif opener in _RELATIVE or opener == "~participle":
             subject = _actor_ending_at(

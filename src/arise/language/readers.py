@@ -824,10 +824,14 @@ def read_maneuvers(reading: Reading) -> None:
             name="ego_maneuver", value=ego[0].value, source=FactSource.TEXT, quote=ego[1]
         )
     if ego is not None and ego[0] is EgoManeuver.CHANGE_LANE:
-        side = _numbered_lane_change(cast, ego[1])
-        for hit in rulebook().hits(Fact.LANE_SIDE, cast.text):
-            if side is None and subject_of(cast, hit.start) == "ego":
-                side = (hit.value, hit.quote)
+        side = _numbered_lane_change(cast, ego[1]) or next(
+            (
+                (hit.value, hit.quote)
+                for hit in rulebook().hits(Fact.LANE_SIDE, cast.text)
+                if subject_of(cast, hit.start) == "ego"
+            ),
+            None,
+        )
         if side is not None:
             reading.facts["ego_lane_side"] = GroundedFact(
                 name="ego_lane_side", value=side[0], source=FactSource.TEXT, quote=side[1]
