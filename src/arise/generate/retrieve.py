@@ -521,11 +521,10 @@ def retrieve(
         behaviors = _prefer(behaviors, lambda e: -int(ALONG_FIRST_TAG in e.tags))
     # Going back the way it came only where the text says so: a walker who steps out and
     # is read as stepping back looks, in the trace, like one who turned round.
-    back = [e for e in behaviors if TURNS_BACK_TAG in e.tags]
     if spec.adversary_turns_back:
-        behaviors = back + [e for e in behaviors if e not in back]
-    elif len(back) < len(behaviors):
-        behaviors = [e for e in behaviors if e not in back]
+        behaviors = _prefer(behaviors, lambda e: int(TURNS_BACK_TAG in e.tags))
+    elif not all(TURNS_BACK_TAG in e.tags for e in behaviors):
+        behaviors = [e for e in behaviors if TURNS_BACK_TAG not in e.tags]
     pools = [behaviors]
     if spec.adversary_stationary:
         # Parked, stalled or stopped in the text: a behavior that stays put, if one fits.

@@ -105,6 +105,8 @@ def noun_class(match: re.Match[str]) -> str:
     return match.lastgroup.rsplit("_", 1)[0]
 
 
+@cache
 def class_pattern(name: str) -> re.Pattern[str]:
-    """The phrases of one word class as a regex (`ego`, `side`, ...)."""
+    """The phrases of one word class as a regex (`ego`, `side`, ...), built once: the
+    clause reader asks for one per clause."""
     return compile_pattern(f"@{name}", lexicon().classes)

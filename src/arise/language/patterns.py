@@ -31,9 +31,9 @@ from collections.abc import Mapping
 from arise.language.errors import RuleError
 
 #: Between two words: spaces, a hyphen, a slash, a comma, a colon, an arrow, an at sign, a
-#: number sign ("the #2 lane" is "the 2 lane") or brackets ("right front" matches "right-front", "ahead in" "ahead, in", "l r" "L->R",
-#: "lane 3 right" "lane 3 (right)", "the 2 lane" "the #2 lane", "stopped stop line" "stopped @ stop line", "surface
-#: wet" "Road surface: wet").
+#: number sign or brackets ("right front" matches "right-front", "ahead in" "ahead, in",
+#: "l r" "L->R", "lane 3 right" "lane 3 (right)", "the 2 lane" "the #2 lane", "stopped stop
+#: line" "stopped @ stop line", "surface wet" "Road surface: wet").
 _GAP = r"(?:\s*[,:]\s*|\s*->\s*|\s*@\s*|[\s()/#-]+)"
 #: `...`: up to eight words, within the sentence.
 _SKIP = r"(?:[\w'-]+(?:\s*,\s*|\s+)){0,8}?"  # no hyphen between: one way to split

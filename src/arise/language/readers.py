@@ -362,6 +362,13 @@ def _ego_words(cast: Cast) -> list[tuple[int, int]]:
     ]
 
 
+def _right_of(cast: Cast, lane: int, other: int) -> bool:
+    """Whether numbered `lane` lies right of lane `other`: lanes count from the left, as
+    police reports number them, unless the text counts them from the right."""
+    from_right = rulebook().first(Fact.LANE_ORDER, cast.text) is not None
+    return (lane > other) != from_right
+
+
 def read_lane_number(cast: Cast, mention: Mention) -> GroundedFact | None:
     """The lane beside the ego from numbered lanes ("V1 in the #1 lane ... V2 in the #2
     lane"): lanes count from the left, so a higher number than the ego's is on its right,
@@ -370,8 +377,7 @@ def read_lane_number(cast: Cast, mention: Mention) -> GroundedFact | None:
     ours = _lane_number(cast, _ego_words(cast)) if theirs is not None else None
     if theirs is None or ours is None or theirs.value == ours.value:
         return None
-    from_right = rulebook().first(Fact.LANE_ORDER, cast.text) is not None
-    right = (int(theirs.value) > int(ours.value)) != from_right
+    right = _right_of(cast, int(theirs.value), int(ours.value))
     return GroundedFact(
         name="spawn_position",
         value=(
@@ -778,13 +784,11 @@ _LANE_NUMBERS = re.compile(r"\b(\d)\b\D+\b(\d)\b")
 
 
 def _numbered_lane_change(cast: Cast, words: str) -> tuple[str, str] | None:
-    """The side of a move between numbered lanes ("from the #2 lane to the #1 lane"):
-    lanes count from the left unless the text counts them from the right."""
+    """The side of a move between numbered lanes ("from the #2 lane to the #1 lane")."""
     numbers = _LANE_NUMBERS.search(words)
     if numbers is None or numbers.group(1) == numbers.group(2):
         return None
-    from_right = rulebook().first(Fact.LANE_ORDER, cast.text) is not None
-    right = (int(numbers.group(2)) > int(numbers.group(1))) != from_right
+    right = _right_of(cast, int(numbers.group(2)), int(numbers.group(1)))
     return ("right" if right else "left", words)
 
 
