@@ -530,6 +530,7 @@ def read_position(
         return told
     best: tuple[int, int, RelativePosition, str] | None = None
     fallback: tuple[int, int, RelativePosition, str] | None = None  # from a weak rule
+    damage: set[tuple[int, int]] = set()  # the cues read from where the ego was touched
     stretches = words_of(cast, mention)
     side_said = next(
         (hit for a, b in stretches if (hit := rulebook().first(Fact.BARE_SIDE, cast.text, a, b))),
@@ -560,6 +561,8 @@ def read_position(
                     said = _SIDED[cue[2]][side.value]
                     cue = (cue[0], cue[1], said, f"{cue[3]} ... {side.quote}")
                 (weak if hit.rule.weak else cues).append(cue)
+                if hit.rule.damage:
+                    damage.add(cue[:2])
         sided = [c for c in cues if c[2] in _SIDED]
         if sided and any(c[2] in _ALONG for c in cues):
             # "comes from behind in the left lane", "just ahead of me in the right-hand
@@ -613,6 +616,8 @@ def read_position(
             else None
         )
     position = best[2]
+    if best[:2] in damage and position in _ADJACENT.values() and _crosses_there(cast, mention):
+        position = _CROSSING[_SIDE_OF[position]]
     if mention.cls.is_walker and position in _ADJACENT.values():
         # A walker "from the passenger side", "in the lane on the right": no walker starts
         # in a traffic lane; it stands at that kerb, or comes off it across the road.
@@ -620,6 +625,22 @@ def read_position(
         position = pair[_SIDE_OF[position]]
     return GroundedFact(
         name="spawn_position", value=position.value, source=FactSource.TEXT, quote=best[3]
+    )
+
+
+def _crosses_there(cast: Cast, mention: Mention) -> bool:
+    """Whether a road user that hit the ego's side came along the crossing road: the scene
+    is a junction (its road words, else traffic-control words) and the road user's words
+    say no lane change, which would put it beside the ego."""
+    road = rulebook().by_order(Fact.ROAD, cast.text)
+    if road is not None and road.value not in (RoadType.INTERSECTION, RoadType.T_JUNCTION):
+        return False
+    if road is None and rulebook().first(Fact.TRAFFIC_CONTROL, cast.text) is None:
+        return False
+    return not any(
+        hit.value == "change_lane"
+        for start, end in words_of(cast, mention)
+        for hit in rulebook().hits(Fact.TURN, cast.text, start, end)
     )
 
 
@@ -783,13 +804,24 @@ def read_ego_overtaking(reading: Reading) -> None:
 _LANE_NUMBERS = re.compile(r"\b(\d)\b\D+\b(\d)\b")
 
 
+_ONE_LANE_NUMBER = re.compile(r"#\s*(\d)\b")
+
+
 def _numbered_lane_change(cast: Cast, words: str) -> tuple[str, str] | None:
-    """The side of a move between numbered lanes ("from the #2 lane to the #1 lane")."""
+    """The side of a move between numbered lanes ("from the #2 lane to the #1 lane"), or
+    into one ("a lane change into the #2 lane") from the lane the ego's words put it in."""
     numbers = _LANE_NUMBERS.search(words)
-    if numbers is None or numbers.group(1) == numbers.group(2):
+    if numbers is not None:
+        if numbers.group(1) == numbers.group(2):
+            return None
+        right = _right_of(cast, int(numbers.group(2)), int(numbers.group(1)))
+        return ("right" if right else "left", words)
+    into = _ONE_LANE_NUMBER.search(words)
+    ours = _lane_number(cast, _ego_words(cast)) if into is not None else None
+    if into is None or ours is None or ours.value == into.group(1):
         return None
-    right = _right_of(cast, int(numbers.group(2)), int(numbers.group(1)))
-    return ("right" if right else "left", words)
+    right = _right_of(cast, int(into.group(1)), int(ours.value))
+    return ("right" if right else "left", f"{ours.quote} ... {words}")
 
 
 def read_maneuvers(reading: Reading) -> None:

@@ -134,6 +134,10 @@ class Rule(BaseModel):
     #: The value's side is the usual one, not said (a kerb, a bike lane or a slip road with
     #: no side is on the right): a side said in the actor's words turns it to that side.
     side_assumed: bool = False
+    #: The value is read from where the ego was touched ("scraped its left door"), which
+    #: places a road user beside the ego on an open road but on the crossing road at a
+    #: junction (`readers.read_position`).
+    damage: bool = False
     examples: list[Example] = Field(min_length=1)
 
 
