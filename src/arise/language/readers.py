@@ -997,6 +997,38 @@ def read_ego_plan(reading: Reading) -> None:
                 return
 
 
+def read_overtake_past_oncoming(reading: Reading) -> None:
+    """An ego that pulls out to the left while another road user comes the other way
+    overtakes through that road user's lane, on a two-way road: a bypass, unless other words
+    gave the ego a plan or the road is a highway (whose left lane runs the ego's way)."""
+    facts = reading.facts
+    maneuver, side = facts.get("ego_maneuver"), facts.get("ego_lane_side")
+    if maneuver is None or maneuver.value != EgoManeuver.CHANGE_LANE.value:
+        return
+    if "ego_plan" in facts or (side is not None and side.value != "left"):
+        return
+    cast = reading.cast
+    road = rulebook().by_order(Fact.ROAD, cast.text)
+    if road is not None and road.value in (RoadType.HIGHWAY, RoadType.MERGE):
+        return
+    for mention in cast.others:
+        if mention.cls.is_place or mention.is_prop:
+            continue
+        told = (
+            facts.get("spawn_position")
+            if mention is reading.adversary
+            else read_compass(cast, mention) or read_position(cast, mention)
+        )
+        if told is not None and told.value == RelativePosition.ONCOMING.value:
+            facts["ego_plan"] = GroundedFact(
+                name="ego_plan",
+                value=EgoPlan.BYPASS.value,
+                source=FactSource.TEXT,
+                quote=f"{maneuver.quote} ... {told.quote}",
+            )
+            return
+
+
 def read_ego_stopped(reading: Reading) -> None:
     """Whether the ego stands still for the whole scene, from words whose subject it is; not
     when other words give it a maneuver ("stopped at the signal waiting to turn left")."""
@@ -1142,6 +1174,7 @@ def read_description(description: str, adversary_quote: str | None = None) -> Re
     read_start_detail(reading)
     read_ego_stopped(reading)
     read_ego_plan(reading)
+    read_overtake_past_oncoming(reading)
     read_ego_on_ramp(reading)
     read_road(reading)
     read_quantity(reading)
