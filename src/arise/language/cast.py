@@ -659,15 +659,22 @@ def _same_thing(
     generic_vehicle = word.lower() in ("vehicle", "vehicles", "driver", "motorist") or (
         word.lower().startswith("car")
     )
+    plural = not word.endswith(("'s", "’s")) and _is_plural(word, cls)
     # "the car" is the car named before it, even with a motorbike named in between; a
-    # generic word ("the vehicle") may mean any vehicle, the latest first.
+    # generic word ("the vehicle") may mean any vehicle, the latest first. Many ("the
+    # cars") are not the one named before.
     for earlier in reversed(found):
-        if earlier.cls == cls:
+        if earlier.cls == cls and not (plural and earlier.count == 1):
             return earlier
     if _PLACED_BY_THE_EGO.match(after):
         return None  # "the car behind": placed anew by where it is, not the lorry before
     for earlier in reversed(found):
-        if generic_vehicle and earlier.cls in VEHICLE_CLASSES and cls is ActorClass.CAR:
+        if (
+            generic_vehicle
+            and earlier.cls in VEHICLE_CLASSES
+            and cls is ActorClass.CAR
+            and not (plural and earlier.count == 1)
+        ):
             return earlier
     return None
 
@@ -686,9 +693,13 @@ def _is_party(mention: Mention) -> bool:
     return _is_party_word(mention.quote)
 
 
-#: After a generic "the car": where it is from the ego, which names a new one.
+#: After a generic "the car": where it is from the ego, or that it comes towards the ego,
+#: which names a new one ("wait behind the lorry until the car coming towards you has gone").
 _PLACED_BY_THE_EGO = re.compile(
-    r"^\s*(?:behind|in front|ahead|following|next to|beside|alongside)\b(?!\s+(?:it|them)\b)",
+    r"^\s*(?:(?:behind|in front|ahead|following|next to|beside|alongside)\b(?!\s+(?:it|them)\b)"
+    r"|(?:coming|driving|heading|travelling|traveling)\s+(?:towards|toward|at)\s+(?:you|me|us|the ego|the av)\b"
+    r"|(?:coming|driving|travelling|traveling)\s+the\s+other\s+way\b"
+    r"|(?:from|in)\s+the\s+(?:other|opposite)\s+direction\b)",
     re.I,
 )
 

@@ -106,6 +106,10 @@ def _actor_starts(cast: Cast) -> tuple[int, ...]:
     return tuple(sorted(at for at in named if not any(_just_after(at, end) for end in places)))
 
 
+#: "... and crossed", "... then ran": a verb joined to the clause's own subject.
+_CARRIES_ON = re.compile(r"\b(?:and|then|and then|before|but)\s+(?=[a-z])", re.I)
+
+
 def words_of(cast: Cast, mention: Mention) -> list[tuple[int, int]]:
     """The stretches of text about `mention`: from a few words before each of its spans to
     the next named actor or the end of the sentence."""
@@ -149,6 +153,21 @@ def words_of(cast: Cast, mention: Mention) -> list[tuple[int, int]]:
             and _PRONOUN_OPENS.match(text, clause.start)
         ):
             stretches.append((clause.start, clause.end))
+    # "a pedestrian emerged between the parked cars and crossed southbound": the words after
+    # another actor named inside this actor's own clause are this actor's again.
+    for clause in cast.clauses:
+        if clause.subject is not mention or clause.inverted:
+            continue
+        inside = [
+            s.end
+            for m in cast.others
+            if m is not mention
+            for s in m.spans
+            if clause.start <= s.start and s.end < clause.end
+        ]
+        joined = _CARRIES_ON.search(text, max(inside), clause.end) if inside else None
+        if joined is not None:
+            stretches.append((joined.start(), clause.end))
     # "On the left a van pulls out", "Ahead on the kerb side a bus has pulled in": a place
     # said before the subject it opens the clause with is about that subject.
     for clause in cast.clauses:
@@ -217,7 +236,9 @@ def _fronted_participle(cast: Cast, lead: int) -> tuple[int, int] | None:
 
 # "(is) struck from behind by a car": the passive verb before "by" says what the agent did.
 _PASSIVE_AGENT = re.compile(
-    r"\b(?:is|was|are|were|gets?|got|being|been)\s+([\w'-]+(?:\s+[\w'-]+){0,4}?)\s+by\s+$",
+    r"\b(?:is|was|are|were|gets?|got|being|been)\s+([\w'-]+(?:\s+[\w'-]+){0,4}?)\s+by\s+$"
+    # notes drop the verb: "ego lane blocked by stalled SUV"
+    r"|\b((?:lane|way|path|road)\s+(?:blocked|obstructed)\s+by\s+)$",
     re.I,
 )
 
@@ -226,7 +247,9 @@ def _passive_verb_start(text: str, lead: int) -> int:
     """Where the words about a passive agent begin: at its verb when the phrase follows
     "is <verb> ... by" in the same clause, else at the phrase itself."""
     found = _PASSIVE_AGENT.search(text[max(0, lead - 60) : lead])
-    return max(0, lead - 60) + found.start(1) if found else lead
+    if found is None:
+        return lead
+    return max(0, lead - 60) + found.start(1 if found.group(1) is not None else 2)
 
 
 #: "<the ego's part> was <verb>": the part of the ego a passive clause is about, named at
@@ -630,8 +653,14 @@ def read_position(
 
 def _crosses_there(cast: Cast, mention: Mention) -> bool:
     """Whether a road user that hit the ego's side came along the crossing road: the scene
-    is a junction (its road words, else traffic-control words) and the road user's words
-    say no lane change, which would put it beside the ego."""
+    is a junction (its road words, else traffic-control words), the ego does not turn (one
+    going its way hits a turning ego's side too) and the road user's words say no lane
+    change, which would put it beside the ego."""
+    if any(
+        hit.value in ("turn_left", "turn_right") and subject_of(cast, hit.start) == "ego"
+        for hit in rulebook().hits(Fact.TURN, cast.text)
+    ):
+        return False
     road = rulebook().by_order(Fact.ROAD, cast.text)
     if road is not None and road.value not in (RoadType.INTERSECTION, RoadType.T_JUNCTION):
         return False
