@@ -554,6 +554,7 @@ def read_position(
     best: tuple[int, int, RelativePosition, str] | None = None
     fallback: tuple[int, int, RelativePosition, str] | None = None  # from a weak rule
     damage: set[tuple[int, int]] = set()  # the cues read from where the ego was touched
+    routed: set[tuple[int, int]] = set()  # the cues on the road a turning ego enters
     stretches = words_of(cast, mention)
     side_said = next(
         (hit for a, b in stretches if (hit := rulebook().first(Fact.BARE_SIDE, cast.text, a, b))),
@@ -586,12 +587,18 @@ def read_position(
                 (weak if hit.rule.weak else cues).append(cue)
                 if hit.rule.damage:
                     damage.add(cue[:2])
+                if hit.rule.after_turn:
+                    routed.add(cue[:2])
+        on_route = any(cue[:2] in routed for cue in cues)
+        if on_route:
+            # "just past the corner on the right": the side of the road the ego turns into
+            cues = [c for c in cues if c[:2] in routed]
         sided = [c for c in cues if c[2] in _SIDED]
         if sided and any(c[2] in _ALONG for c in cues):
             # "comes from behind in the left lane", "just ahead of me in the right-hand
             # lane", "behind me, coming from my right": the side tells more than the end.
             cues = [c for c in cues if c[2] not in _ALONG]
-        if side_said and cues and all(c[2] in _ALONG for c in cues):
+        if side_said and cues and all(c[2] in _ALONG for c in cues) and not on_route:
             # "beside me at left, a little in front": a side said beside an end is the
             # side's lane (or kerb), as above.
             cues = []

@@ -138,6 +138,9 @@ class Rule(BaseModel):
     #: places a road user beside the ego on an open road but on the crossing road at a
     #: junction (`readers.read_position`).
     damage: bool = False
+    #: The place is on the road a turning ego enters, ahead on its route: a side said with
+    #: it is that road's kerb, not a lane beside the ego (`readers.read_position`).
+    after_turn: bool = False
     examples: list[Example] = Field(min_length=1)
 
 
