@@ -659,25 +659,29 @@ def _same_thing(
     generic_vehicle = word.lower() in ("vehicle", "vehicles", "driver", "motorist") or (
         word.lower().startswith("car")
     )
-    plural = not word.endswith(("'s", "’s")) and _is_plural(word, cls)
+    # Many ("the parked cars", "the cars from the other direction") are not one named
+    # before, unless they are it and the ego ("both cars", "the two vehicles").
+    placed_many = (
+        not word.endswith(("'s", "’s"))
+        and _is_plural(word, cls)
+        and not _BOTH.search(before)
+        and word.lower() != "vehicles"
+    )
     # "the car" is the car named before it, even with a motorbike named in between; a
-    # generic word ("the vehicle") may mean any vehicle, the latest first. Many ("the
-    # cars") are not the one named before.
+    # generic word ("the vehicle") may mean any vehicle, the latest first.
     for earlier in reversed(found):
-        if earlier.cls == cls and not (plural and earlier.count == 1):
+        if earlier.cls == cls and not (placed_many and earlier.count == 1):
             return earlier
     if _PLACED_BY_THE_EGO.match(after):
         return None  # "the car behind": placed anew by where it is, not the lorry before
     for earlier in reversed(found):
-        if (
-            generic_vehicle
-            and earlier.cls in VEHICLE_CLASSES
-            and cls is ActorClass.CAR
-            and not (plural and earlier.count == 1)
-        ):
+        if generic_vehicle and earlier.cls in VEHICLE_CLASSES and cls is ActorClass.CAR:
             return earlier
     return None
 
+
+#: "both cars", "the two vehicles": the ego and the other, named before.
+_BOTH = re.compile(r"\b(?:both|two)\s+(?:[\w'-]+\s+)?$", re.I)
 
 #: "their van", "his car": the vehicle of someone named before.
 _POSSESSOR = re.compile(r"\b(?:their|his|her)\s+(?:[\w'-]+[- ]){0,2}$", re.I)
@@ -699,7 +703,7 @@ _PLACED_BY_THE_EGO = re.compile(
     r"^\s*(?:(?:behind|in front|ahead|following|next to|beside|alongside)\b(?!\s+(?:it|them)\b)"
     r"|(?:coming|driving|heading|travelling|traveling)\s+(?:towards|toward|at)\s+(?:you|me|us|the ego|the av)\b"
     r"|(?:coming|driving|travelling|traveling)\s+the\s+other\s+way\b"
-    r"|(?:from|in)\s+the\s+(?:other|opposite)\s+direction\b)",
+    r"|(?:from|in)\s+(?:the\s+)?(?:other|opposite)\s+direction\b)",
     re.I,
 )
 

@@ -591,8 +591,11 @@ def read_position(
                     routed.add(cue[:2])
         on_route = any(cue[:2] in routed for cue in cues)
         if on_route:
-            # "just past the corner on the right": the side of the road the ego turns into
-            cues = [c for c in cues if c[:2] in routed]
+            # "double-parked just past the corner on the right": the side of the road the
+            # ego turns into, not a lane beside it; a kerb said still holds ("parked at the
+            # kerb just round the corner").
+            kerb = [c for c in cues if c[2] in _ROADSIDE.values()]
+            cues = kerb or [c for c in cues if c[:2] in routed]
         sided = [c for c in cues if c[2] in _SIDED]
         if sided and any(c[2] in _ALONG for c in cues):
             # "comes from behind in the left lane", "just ahead of me in the right-hand
