@@ -323,18 +323,20 @@ def read_cast(text: str) -> Cast:
     # A noun right before another one modifies it ("a flatbed truck", "a taxi cab"): the
     # phrase is one thing, named by its head, the last noun.
     noun_starts = {start for start, _, _, kind in candidates if kind == "noun"}
+    rider: Span | None = None  # a rider just named, whose bike follows ("a man on a bike")
     for at, (start, end, cls, kind) in enumerate(candidates):
         if _overlaps(taken, start, end):
             continue
         ridden = next((c for c in candidates[at + 1 :] if c[0] >= end), None)
         if (
-            cls is ActorClass.PEDESTRIAN
+            (cls is ActorClass.PEDESTRIAN or cls in _RIDDEN)  # "a delivery rider on a moped"
             and ridden is not None
             and ridden[2] in _RIDDEN
             and _RIDING.match(text[end : ridden[0]])
         ):
             skipped.append(text[start:end])  # the rider: the bike that follows is the actor
             taken.append((start, end))
+            rider = Span(start, end)
             continue
         following = re.match(r"[ -]+", text[end:])
         if kind == "noun" and following and end + following.end() in noun_starts:
@@ -392,10 +394,12 @@ def read_cast(text: str) -> Cast:
         counted = bool(count_match) or not (plural or _GROUP.search(before))
         if count == 1 and plural and cls is not ActorClass.PEDESTRIAN:
             count = 2 if not count_match else count
-        quote_start = phrase_start(text, start)
-        found.append(
-            Mention(cls, count, start, end, text[quote_start:end], (span,), counted=counted)
-        )
+        spans: tuple[Span, ...] = (span,)
+        if rider is not None and cls in _RIDDEN and _RIDING.match(text[rider.end : start]):
+            spans = (rider, span)  # the rider's words open the clause: "a man on a bike rode"
+        quote_start = phrase_start(text, spans[0].start)
+        found.append(Mention(cls, count, start, end, text[quote_start:end], spans, counted=counted))
+        rider = None
         if kind.startswith(("V", "P")) and kind != "noun":
             numbered[kind] = len(found) - 1
     found = _numbered_descriptions(text, found, numbered)
