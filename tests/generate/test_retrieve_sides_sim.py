@@ -28,7 +28,7 @@ from arise.kb.retrieval import BM25Retriever
 from arise.maps.registry import MapRegistry
 from arise.validate import CheckOptions, WorkerPool, check_text
 from arise.validate.types import AgentTrace, SimulationFacts
-from arise.vocabulary import AdversaryManeuver, RelativePosition
+from arise.vocabulary import AdversaryManeuver, RelativePosition, StartDetail
 
 TURN_DEGREES = 45.0
 SEEDS = (1, 2)
@@ -447,4 +447,40 @@ def test_a_lead_in_the_egos_lane_goes_straight_over_the_crossroads_with_the_ego(
         _, adversary, relation = ego_and_adversary(simulation, chosen)
         where = (chosen, seed, relation.describe())
         assert relation.ahead > 0 and relation.side == "centre", where
+        assert adversary_turn(adversary) is AdversaryManeuver.STRAIGHT, where
+
+
+@pytest.mark.slow
+def test_a_fast_rider_that_rides_on_past_the_junction_stops_at_the_roads_end(
+    kb: KnowledgeBase,
+    maps: dict[str, frozenset[str]],
+    validator_pool: WorkerPool,
+) -> None:
+    """A bicycle in the bike lane keeps going straight as the ego turns right: at 13-17 m/s
+    it reaches the end of the map's road within the scene, where it must stop, not turn
+    round into the other lane (which the trace reads as a turn)."""
+    spec = ScenarioSpec(
+        adversary_type="bicycle",
+        adversary_class="Bicycle",
+        behavior="comes up behind in the bike lane and keeps going straight past the ego",
+        road_type="intersection",
+        ego_maneuver="turn_right",
+        geometry="a junction",
+        spawn_position=RelativePosition.ADJACENT_LANE_RIGHT,
+        spawn="behind the ego in the bike lane on its right",
+        adversary_maneuver="straight",
+        start_detail=StartDetail.FROM_BEHIND,
+    )
+    chosen, runs = simulated(spec, "Bicycle", kb, maps, validator_pool)
+    for seed, simulation in runs:
+        _, adversary, relation = ego_and_adversary(simulation, chosen)
+        where = (chosen, seed, relation.describe())
+        print(
+            "DBG",
+            where,
+            [
+                (p.step, round(p.x, 1), round(p.y, 1), round(p.heading, 2), round(p.speed, 1))
+                for p in adversary.trajectory[::10]
+            ],
+        )
         assert adversary_turn(adversary) is AdversaryManeuver.STRAIGHT, where

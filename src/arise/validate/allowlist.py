@@ -206,6 +206,8 @@ SCENIC_PRIVATE_ACCESSORS = frozenset(
         "_element",
         "_sidewalk",
         "_opposite",
+        "_successor",
+        "_predecessor",
     }
 )
 
