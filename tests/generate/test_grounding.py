@@ -254,7 +254,8 @@ def test_without_a_named_road_user_the_model_type_is_marked_a_guess() -> None:
 
 
 def test_only_facts_resting_on_words_are_held_against_a_script() -> None:
-    text = "Turning left, the ego meets a cyclist on the road it turns into."
+    # ("on the road it turns into" would say where: ahead on its route, start.exit_lane)
+    text = "Turning left at the lights, the ego meets a cyclist."
     spec = ground(text, answer(adversary="a cyclist", spawn_position="adjacent_lane_left")).spec
     assert spec.rests_on_words("ego_maneuver")  # "Turning left"
     assert spec.rests_on_words("adversary_type")  # "a cyclist"
