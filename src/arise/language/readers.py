@@ -555,6 +555,7 @@ def read_position(
     fallback: tuple[int, int, RelativePosition, str] | None = None  # from a weak rule
     damage: set[tuple[int, int]] = set()  # the cues read from where the ego was touched
     routed: set[tuple[int, int]] = set()  # the cues on the road a turning ego enters
+    turning = _ego_turns(cast)
     stretches = words_of(cast, mention)
     side_said = next(
         (hit for a, b in stretches if (hit := rulebook().first(Fact.BARE_SIDE, cast.text, a, b))),
@@ -576,6 +577,8 @@ def read_position(
                 continue  # the words tell what the clause's subject does, and it is another
             if _pronoun_means_another(cast, mention, hit):
                 continue  # "behind it" of a car named before: placed by that car
+            if hit.rule.after_turn and not turning:
+                continue  # "in the side street" of an ego that does not turn into it
             seen_values.add((hit.value, hit.rule.weak))
             if hit.end <= end:
                 cue = (hit.start, hit.order, RelativePosition(hit.value), hit.quote)
@@ -661,15 +664,20 @@ def read_position(
     )
 
 
+def _ego_turns(cast: Cast) -> bool:
+    """Whether the text has the ego turn left or right."""
+    return any(
+        hit.value in ("turn_left", "turn_right") and subject_of(cast, hit.start) == "ego"
+        for hit in rulebook().hits(Fact.TURN, cast.text)
+    )
+
+
 def _crosses_there(cast: Cast, mention: Mention) -> bool:
     """Whether a road user that hit the ego's side came along the crossing road: the scene
     is a junction (its road words, else traffic-control words), the ego does not turn (one
     going its way hits a turning ego's side too) and the road user's words say no lane
     change, which would put it beside the ego."""
-    if any(
-        hit.value in ("turn_left", "turn_right") and subject_of(cast, hit.start) == "ego"
-        for hit in rulebook().hits(Fact.TURN, cast.text)
-    ):
+    if _ego_turns(cast):
         return False
     road = rulebook().by_order(Fact.ROAD, cast.text)
     if road is not None and road.value not in (RoadType.INTERSECTION, RoadType.T_JUNCTION):
