@@ -555,7 +555,7 @@ def read_position(
     fallback: tuple[int, int, RelativePosition, str] | None = None  # from a weak rule
     damage: set[tuple[int, int]] = set()  # the cues read from where the ego was touched
     routed: set[tuple[int, int]] = set()  # the cues on the road a turning ego enters
-    turning = _ego_turns(cast)
+    turning: bool | None = None  # whether the ego turns, asked at the first such cue
     stretches = words_of(cast, mention)
     side_said = next(
         (hit for a, b in stretches if (hit := rulebook().first(Fact.BARE_SIDE, cast.text, a, b))),
@@ -577,8 +577,10 @@ def read_position(
                 continue  # the words tell what the clause's subject does, and it is another
             if _pronoun_means_another(cast, mention, hit):
                 continue  # "behind it" of a car named before: placed by that car
-            if hit.rule.after_turn and not turning:
-                continue  # "in the side street" of an ego that does not turn into it
+            if hit.rule.after_turn:
+                turning = _ego_turns(cast) if turning is None else turning
+                if not turning:
+                    continue  # "in the side street" of an ego that does not turn into it
             seen_values.add((hit.value, hit.rule.weak))
             if hit.end <= end:
                 cue = (hit.start, hit.order, RelativePosition(hit.value), hit.quote)
