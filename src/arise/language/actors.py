@@ -16,8 +16,7 @@ from arise.language.readers import (
     Reading,
     cue_before,
     moves,
-    read_compass,
-    read_position,
+    read_start,
     read_stationary,
     words_of,
 )
@@ -94,7 +93,7 @@ def read_actor(cast: Cast, mention: Mention) -> CastActor:
     text = cast.text
     stretches = words_of(cast, mention)
     cues = _cues(text, stretches)
-    position = read_compass(cast, mention) or read_position(cast, mention)
+    position = read_start(cast, mention)
     start = RelativePosition(position.value) if position is not None else None
     stationary = read_stationary(cast, mention) is not None or bool(
         "waits" in cues and not any(moves(text, a, b) for a, b in stretches)

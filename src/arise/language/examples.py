@@ -4,7 +4,7 @@ reading rule's examples are checked against (tests/language/test_rule_examples.p
 from __future__ import annotations
 
 from arise.language.actors import read_actor
-from arise.language.readers import read_compass, read_description, read_position, read_stationary
+from arise.language.readers import read_description, read_start, read_stationary
 from arise.language.rules import Fact, rulebook
 
 
@@ -22,7 +22,7 @@ def read_facts(description: str) -> dict[str, dict[str, str]]:
         facts: dict[str, str] = {"class": mention.cls.value, "count": str(mention.count)}
         if mention is not reading.adversary:
             facts["role"] = read_actor(cast, mention).role.value
-        position = read_compass(cast, mention) or read_position(cast, mention)
+        position = read_start(cast, mention)
         if position is not None:
             facts[Fact.START.value] = position.value
         if read_stationary(cast, mention) is not None:

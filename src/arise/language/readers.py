@@ -539,6 +539,12 @@ def _from_there(
     return None
 
 
+def read_start(cast: Cast, mention: Mention) -> GroundedFact | None:
+    """Where `mention` starts, seen from the ego: from compass headings when the text gives
+    the ego's and its own, else from the words about it."""
+    return read_compass(cast, mention) or read_position(cast, mention)
+
+
 def read_position(
     cast: Cast, mention: Mention, *, by_another: bool = True, squeezed: bool = True
 ) -> GroundedFact | None:
@@ -578,7 +584,7 @@ def read_position(
             if _pronoun_means_another(cast, mention, hit):
                 continue  # "behind it" of a car named before: placed by that car
             if hit.rule.after_turn:
-                turning = _ego_turns(cast) if turning is None else turning
+                turning = bool(ego_turns(cast)) if turning is None else turning
                 if not turning:
                     continue  # "in the side street" of an ego that does not turn into it
             seen_values.add((hit.value, hit.rule.weak))
@@ -666,11 +672,12 @@ def read_position(
     )
 
 
-def _ego_turns(cast: Cast) -> bool:
-    """Whether the text has the ego turn left or right."""
-    return any(
-        hit.value in ("turn_left", "turn_right") and subject_of(cast, hit.start) == "ego"
+def ego_turns(cast: Cast) -> frozenset[str]:
+    """The turns ("turn_left", "turn_right") the text has the ego make."""
+    return frozenset(
+        hit.value
         for hit in rulebook().hits(Fact.TURN, cast.text)
+        if hit.value in ("turn_left", "turn_right") and subject_of(cast, hit.start) == "ego"
     )
 
 
@@ -679,7 +686,7 @@ def _crosses_there(cast: Cast, mention: Mention) -> bool:
     is a junction (its road words, else traffic-control words), the ego does not turn (one
     going its way hits a turning ego's side too) and the road user's words say no lane
     change, which would put it beside the ego."""
-    if _ego_turns(cast):
+    if ego_turns(cast):
         return False
     road = rulebook().by_order(Fact.ROAD, cast.text)
     if road is not None and road.value not in (RoadType.INTERSECTION, RoadType.T_JUNCTION):
@@ -1066,7 +1073,7 @@ def read_overtake_past_oncoming(reading: Reading) -> None:
         told = (
             facts.get("spawn_position")
             if mention is reading.adversary
-            else read_compass(cast, mention) or read_position(cast, mention)
+            else read_start(cast, mention)
         )
         if told is not None and told.value == RelativePosition.ONCOMING.value:
             facts["ego_plan"] = GroundedFact(
@@ -1209,7 +1216,7 @@ def read_description(description: str, adversary_quote: str | None = None) -> Re
             source=FactSource.TEXT,
             quote=adversary.quote,
         )
-        position = read_compass(cast, adversary) or read_position(cast, adversary)
+        position = read_start(cast, adversary)
         if position is not None:
             reading.facts["spawn_position"] = position
         stationary = read_stationary(cast, adversary)

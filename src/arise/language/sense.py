@@ -5,8 +5,7 @@ from __future__ import annotations
 
 from arise.language.cast import read_cast
 from arise.language.lexicon import class_pattern
-from arise.language.readers import Reading, subject_of
-from arise.language.rules import Fact, rulebook
+from arise.language.readers import Reading, ego_turns
 from arise.vocabulary import RoadType
 
 
@@ -24,12 +23,7 @@ def self_contradictions(reading: Reading) -> list[str]:
     walker on a highway."""
     found = []
     cast = reading.cast
-    turns = {
-        hit.value
-        for hit in rulebook().hits(Fact.TURN, cast.text)
-        if hit.value in ("turn_left", "turn_right") and subject_of(cast, hit.start) == "ego"
-    }
-    if len(turns) == 2:
+    if len(ego_turns(cast)) == 2:
         found.append("the description has the ego turn both left and right")
     road = reading.facts.get("road_type")
     walkers = [m for m in cast.others if m.cls.is_walker]
