@@ -196,12 +196,14 @@ CROSSING_STARTS = frozenset(
 
 class StartDetail(StrEnum):
     """A finer point of where the adversary starts, when the description says it: which
-    end of the lane beside the ego, or which corner of the street a turning ego enters."""
+    end of the lane beside the ego, which corner of the street a turning ego enters, or
+    that it waits in the lane that ego turns into."""
 
     FROM_BEHIND = "from_behind"  # comes up from behind ("approaching from behind on its right")
     AHEAD = "ahead"  # ends up ahead of the ego ("merged into its lane ahead of it")
     EXIT_CROSSING = "exit_crossing"  # on the crossing of the street a turning ego enters
     EXIT_FAR_CORNER = "exit_far_corner"  # from that crossing's far corner
+    EXIT_LANE = "exit_lane"  # ahead in the lane a turning ego enters ("just past the corner")
 
 
 class ActorRole(StrEnum):

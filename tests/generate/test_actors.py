@@ -32,7 +32,7 @@ from arise.validate.types import (
     Stage,
     TracePoint,
 )
-from arise.vocabulary import ActorRole, RelativePosition
+from arise.vocabulary import ActorRole, RelativePosition, StartDetail
 from tests.fakes import FakeValidator, ScriptedProvider, failed, passed
 
 TRUCKS = (
@@ -541,3 +541,48 @@ def test_an_actors_undeclared_parameter_gets_the_entrys_default() -> None:
     fix = fix_undeclared_param(diagnostic, text, context)
     assert fix is not None
     assert fix.text.splitlines()[0] == "param OPT_ACTOR2_SPAWN_GAP = Range(15, 25)"
+
+
+def test_a_road_user_stopped_in_the_road_a_turning_ego_enters_is_placed_in_that_lane(
+    kb: KnowledgeBase, maps: dict[str, frozenset[str]]
+) -> None:
+    text = (
+        "The ego turns left at the crossroads. A removal lorry is stopped just past the"
+        " corner, and an oncoming moped comes straight on."
+    )
+    spec, found = retrieved(kb, maps, text, "an oncoming moped")
+    [lorry] = spec.actors
+    assert lorry.start is RelativePosition.AHEAD_SAME_LANE
+    assert lorry.start_detail is StartDetail.EXIT_LANE
+    [placed] = found.actors
+    assert placed.spawn.id == "spawn.junction_exit_lane_ahead"
+
+
+@pytest.mark.parametrize(
+    ("text", "adversary", "exit_lane"),
+    [
+        (
+            "Turning right at the lights, the AV finds a tractor stopped in the lane it is"
+            " entering.",
+            "a tractor",
+            True,
+        ),
+        # the words the model quotes no longer decide: "enters" here is the junction
+        (
+            "The ego turns left as a hatchback enters the junction from the left.",
+            "a hatchback",
+            False,
+        ),
+    ],
+)
+def test_only_a_start_read_in_the_exit_lane_takes_the_exit_lanes_spawn(
+    kb: KnowledgeBase, maps: dict[str, frozenset[str]], text: str, adversary: str, exit_lane: bool
+) -> None:
+    # the model quotes the words that once sent it to the exit lane ("enters")
+    quoted = answer(adversary).model_copy(update={"behavior": text.split(", ")[-1]})
+    spec = ground(text, quoted).spec
+    assert "enter" in spec.behavior
+    found = retrieve(spec, kb, BM25Retriever(kb), maps, text)
+    assert (spec.start_detail is StartDetail.EXIT_LANE) is exit_lane
+    [spawn] = found.chosen[Component.SPAWN]
+    assert ("exit_lane" in spawn.tags) is exit_lane, spawn.id

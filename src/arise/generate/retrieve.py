@@ -47,11 +47,6 @@ ROAD_FEATURES: dict[RoadType, tuple[str, ...]] = {
     RoadType.MERGE: ("merge",),
 }
 JUNCTION_FEATURES = {"intersection4", "tjunction"}
-#: Words that place the adversary in the lane a turning ego goes into.
-_EXIT_WORDS = re.compile(
-    r"\b(?:enters|is entering|turns into|turning into|after the turn|past the (?:turn|junction))",
-    re.I,
-)
 #: A geometry whose ego changes lanes (tagged also ego_changes_left or _right).
 EGO_LANE_CHANGE_TAG = "ego_lane_change"
 #: A geometry whose ego comes up the on-ramp; only an ego the text puts there gets one.
@@ -258,6 +253,7 @@ DETAIL_TAGS: dict[StartDetail, frozenset[str]] = {
     StartDetail.AHEAD: frozenset({"ahead"}),
     StartDetail.EXIT_CROSSING: frozenset({"exit_road"}),
     StartDetail.EXIT_FAR_CORNER: frozenset({"far_corner"}),
+    StartDetail.EXIT_LANE: frozenset({"exit_lane"}),
 }
 
 
@@ -483,11 +479,6 @@ def retrieve(
         )
     spawn_tags = set(SPAWN_TAGS[spec.spawn_position])
     detail_tags = _detail_tags(spec)
-    # In the lane a turning ego goes into ("just after the turn ... in the lane it enters").
-    exit_lane = spec.ego_maneuver in (
-        EgoManeuver.TURN_LEFT,
-        EgoManeuver.TURN_RIGHT,
-    ) and bool(_EXIT_WORDS.search(f"{spec.spawn} {spec.behavior}"))
     spawns = _prefer(
         _ranked(
             retriever,
@@ -499,11 +490,7 @@ def retrieve(
                 if e.suits(adversary) and placeable(e) and TRAFFIC_ONLY_TAG not in e.tags
             ],
         ),
-        lambda e: (
-            len(spawn_tags & set(e.tags))
-            + (10 if exit_lane and "exit_lane" in e.tags else 0)
-            + (10 if detail_tags & set(e.tags) else 0)
-        ),
+        lambda e: len(spawn_tags & set(e.tags)) + (10 if detail_tags & set(e.tags) else 0),
     )
     behaviors = _ranked(
         retriever,
@@ -628,14 +615,17 @@ def _created_classes(entry: Entry) -> frozenset[str]:
 
 
 def _misc_fit(actor: Actor) -> Callable[[Entry], int]:
-    """How well a misc entry suits the actor beyond its words: an occluder entry for an
-    occluder, and as many objects as the text counts (one parked car is not a row of three;
-    "several cars" are)."""
+    """How well a misc entry suits the actor beyond its words: where the text puts it (in
+    the lane a turning ego enters), an occluder entry for an occluder, and as many objects
+    as the text counts (one parked car is not a row of three; "several cars" are)."""
+
+    detail = DETAIL_TAGS[actor.start_detail] if actor.start_detail else frozenset()
 
     def fit(entry: Entry) -> int:
         made = len(_created(entry))
         count = 2 * (made == actor.count or (actor.count > 1 and made > 1))
-        return count + (actor.role is ActorRole.OCCLUDER and "occluder" in entry.tags)
+        occluder = actor.role is ActorRole.OCCLUDER and "occluder" in entry.tags
+        return count + occluder + 3 * bool(detail & set(entry.tags))
 
     return fit
 
@@ -936,10 +926,13 @@ def _actor_entries(
 
     spawns = _actor_spawns(actor, kb.of(Component.SPAWN), geometry, used, conflict_taken)
     tags = set(SPAWN_TAGS[start])
+    # "stopped in the exit lane" of a turning ego: the exit lane's spawn, where one fits.
+    exit_lane = actor.start_detail is StartDetail.EXIT_LANE
+    detail = DETAIL_TAGS[StartDetail.EXIT_LANE] if exit_lane else frozenset()
     spawns = _prefer(
         _prefer(
             _ranked(retriever, query(f"{words} {start.value}"), Component.SPAWN, spawns),
-            lambda e: len(tags & set(e.tags)),
+            lambda e: len(tags & set(e.tags)) + 10 * bool(detail & set(e.tags)),
         ),
         lambda e: -side(e),
     )

@@ -65,6 +65,11 @@ class Actor(BaseModel):
     start: RelativePosition | None = Field(
         default=None, description="where it starts, seen from the ego; None: not stated"
     )
+    start_detail: StartDetail | None = Field(
+        default=None,
+        description="a finer point of its start, when the text gives one (in the lane a "
+        "turning ego enters)",
+    )
     stationary: bool = Field(default=False, description="the text says it stays put")
     quote: str = Field(description="the words of the description that name it")
 

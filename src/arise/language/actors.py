@@ -12,6 +12,7 @@ from __future__ import annotations
 from dataclasses import dataclass, replace
 
 from arise.language.cast import Cast, Mention
+from arise.language.facts import start_detail
 from arise.language.readers import (
     Reading,
     cue_before,
@@ -21,7 +22,7 @@ from arise.language.readers import (
     words_of,
 )
 from arise.language.rules import Fact, rulebook
-from arise.vocabulary import ActorClass, ActorRole, RelativePosition
+from arise.vocabulary import ActorClass, ActorRole, RelativePosition, StartDetail
 
 
 @dataclass(frozen=True)
@@ -34,6 +35,7 @@ class CastActor:
     count: int = 1
     count_stated: bool = True  # a number or one; False for a plural with no number
     start: RelativePosition | None = None  # seen from the ego; None: not stated
+    start_detail: StartDetail | None = None  # a finer point of the start, when the words give one
     stationary: bool = False
     quote: str = ""  # the words of the description that name it
 
@@ -114,6 +116,7 @@ def read_actor(cast: Cast, mention: Mention) -> CastActor:
         count=mention.count,
         count_stated=mention.counted,
         start=start,
+        start_detail=start_detail(position),
         stationary=stationary or mention.is_prop,
         quote=mention.quote,
     )

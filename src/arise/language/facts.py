@@ -6,6 +6,8 @@ from enum import StrEnum
 
 from pydantic import BaseModel
 
+from arise.vocabulary import StartDetail
+
 
 class FactSource(StrEnum):
     TEXT = "text"  # a fixed rule read it from the description's words
@@ -26,3 +28,15 @@ class GroundedFact(BaseModel):
         if self.source is FactSource.GUESS:
             return f"{self.name}: {self.value} (the model's guess; no words of the text say it)"
         return f'{self.name}: {self.value}  <- "{self.quote}"'
+
+
+class StartFact(GroundedFact):
+    """Where an actor starts, with a finer point when the words give one (in the lane a
+    turning ego enters), so that no later stage reads the words again to find it."""
+
+    detail: StartDetail | None = None
+
+
+def start_detail(fact: GroundedFact | None) -> StartDetail | None:
+    """The finer point of a start, if the fact is a start that has one."""
+    return fact.detail if isinstance(fact, StartFact) else None

@@ -21,7 +21,7 @@ from arise.language.cast import (
     phrase_start,
     sentence_end,
 )
-from arise.language.facts import FactSource, GroundedFact
+from arise.language.facts import FactSource, GroundedFact, StartFact, start_detail
 from arise.language.quotes import find_quote
 from arise.language.reading import parse
 from arise.language.rules import Fact, Hit, Target, rulebook
@@ -200,8 +200,9 @@ def _just_after(at: int, end: int) -> bool:
 
 #: A place phrase that opens a clause before its subject: a preposition, no verb.
 _FRONTED_PLACE = re.compile(
-    r"\s*(?:just\s+|further\s+|up\s+|then\s+)?(?:ahead\s+)?"
-    r"(?:on|in|at|to|off|beside|alongside|across)\s(?![^,]*\b\w+(?:ing|ed)\b)[^,]*$",
+    r"\s*(?:and\s+)?(?:just\s+|right\s+|shortly\s+|further\s+|up\s+|then\s+)?(?:ahead\s+)?"
+    r"(?:on|in|at|to|off|beside|alongside|across|after|past|round|around)\s"
+    r"(?![^,]*\b\w+(?:ing|ed|s)\b)[^,]*$",
     re.I,
 )
 
@@ -601,7 +602,17 @@ def read_position(
                 if hit.rule.after_turn:
                     routed.add(cue[:2])
         on_route = any(cue[:2] in routed for cue in cues)
-        if on_route:
+        toward = next((c for c in [*cues, *weak] if c[2] is RelativePosition.ONCOMING), None)
+        turned = sorted(ego_turns(cast)) if on_route and toward else []
+        if len(turned) == 1:
+            # "riding toward the junction on the road the ego turns into": it comes along
+            # that road, from the side the ego turns to.
+            side = "left" if turned[0] == "turn_left" else "right"
+            routed_quote = next(c[3] for c in cues if c[:2] in routed)
+            cues = [(toward[0], toward[1], _CROSSING[side], f"{toward[3]} ... {routed_quote}")]
+            routed.clear()
+            weak = []
+        elif on_route:
             # "double-parked just past the corner on the right": the side of the road the
             # ego turns into, not a lane beside it; a kerb said still holds ("parked at the
             # kerb just round the corner").
@@ -636,6 +647,9 @@ def read_position(
             # The lane the ego turns into, with no lane change said: ahead on its route,
             # unless the actor's words place it ("in that lane ... hit the AV's rear").
             fallback = (target.start, -1, RelativePosition.AHEAD_SAME_LANE, target.quote)
+            turning = bool(ego_turns(cast)) if turning is None else turning
+            if turning:  # "stopped in the lane the ego enters" as it turns: that road's
+                routed.add(fallback[:2])
         behind_here = (
             best is not None and best[2] is RelativePosition.BEHIND_SAME_LANE and best[0] >= start
         )
@@ -667,8 +681,19 @@ def read_position(
         # in a traffic lane; it stands at that kerb, or comes off it across the road.
         pair = _ROADSIDE if read_stationary(cast, mention) else _CROSSING
         position = pair[_SIDE_OF[position]]
-    return GroundedFact(
-        name="spawn_position", value=position.value, source=FactSource.TEXT, quote=best[3]
+    # Waiting in the lane a turning ego enters; one that moves on that road may come the
+    # other way ("riding toward the junction on the road the ego turns into").
+    exit_lane = (
+        best[:2] in routed
+        and position is RelativePosition.AHEAD_SAME_LANE
+        and not any(moves(cast.text, a, b) for a, b in stretches)
+    )
+    return StartFact(
+        name="spawn_position",
+        value=position.value,
+        source=FactSource.TEXT,
+        quote=best[3],
+        detail=StartDetail.EXIT_LANE if exit_lane else None,
     )
 
 
@@ -1219,6 +1244,14 @@ def read_description(description: str, adversary_quote: str | None = None) -> Re
         position = read_start(cast, adversary)
         if position is not None:
             reading.facts["spawn_position"] = position
+            detail = start_detail(position)
+            if detail is not None:  # a finer point read later (read_start_detail) wins
+                reading.facts["start_detail"] = GroundedFact(
+                    name="start_detail",
+                    value=detail.value,
+                    source=FactSource.TEXT,
+                    quote=position.quote,
+                )
         stationary = read_stationary(cast, adversary)
         if stationary is not None:
             reading.facts["adversary_stationary"] = stationary
