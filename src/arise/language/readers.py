@@ -604,12 +604,12 @@ def read_position(
         on_route = any(cue[:2] in routed for cue in cues)
         toward = next((c for c in [*cues, *weak] if c[2] is RelativePosition.ONCOMING), None)
         turned = sorted(ego_turns(cast)) if on_route and toward else []
-        if len(turned) == 1:
+        if toward is not None and len(turned) == 1:
             # "riding toward the junction on the road the ego turns into": it comes along
             # that road, from the side the ego turns to.
-            side = "left" if turned[0] == "turn_left" else "right"
+            from_side = _CROSSING["left" if turned[0] == "turn_left" else "right"]
             routed_quote = next(c[3] for c in cues if c[:2] in routed)
-            cues = [(toward[0], toward[1], _CROSSING[side], f"{toward[3]} ... {routed_quote}")]
+            cues = [(toward[0], toward[1], from_side, f"{toward[3]} ... {routed_quote}")]
             routed.clear()
             weak = []
         elif on_route:
