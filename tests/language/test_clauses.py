@@ -75,6 +75,20 @@ def _subject_of(text: str, words: str) -> str | None:
             "ego",
         ),
         ("You wait as two joggers stop and cross.", "cross", "two joggers"),
+        # a past form after a place is the verb of the subject before the place, and a
+        # state there describes the one in the place
+        (
+            "A moped in the bus lane to the right of the AV veered into its path.",
+            "veered",
+            "A moped",
+        ),
+        (
+            "A jogger running on the verge beside the SV darted out.",
+            "darted",
+            "A jogger",
+        ),
+        ("A child steps out from behind a horsebox parked at the kerb.", "parked", "a horsebox"),
+        ("We pass a coach halted in the far lane.", "halted", "a coach"),
     ],
 )
 def test_each_verb_has_the_subject_of_its_clause(text: str, words: str, subject: str) -> None:

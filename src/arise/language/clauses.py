@@ -41,6 +41,25 @@ _PARTICIPLE = re.compile(r"\s*,?\s*(?:\w+ly\s+)?(\w+(?:ing|ed))\b", re.I)
 _NOT_PARTICIPLE = frozenset({"during", "nothing", "something", "anything", "everything", "bed"})
 
 
+#: Words that put the noun after them in a place ("to the right of the AV").
+_PLACE_PREPOSITION = re.compile(
+    r"(?:of|in|into|to|from|behind|by|at|on|onto|toward|towards|past|beside|near|around|"
+    r"ahead|front|between|across|along|alongside|over|under|through|off|against)$",
+    re.I,
+)
+
+
+def _governed(text: str, span: Span) -> bool:
+    """Whether the actor at `span` is the object of a place word ("of the AV")."""
+    before = text[: phrase_start(text, span.start)].split()
+    return bool(before) and _PLACE_PREPOSITION.match(before[-1].strip(",")) is not None
+
+
+def _main_verb(word: str) -> bool:
+    """A past form that tells what someone did ("swerved"), not a state ("parked")."""
+    return word.lower().endswith("ed") and not class_pattern("state_participle").fullmatch(word)
+
+
 def _spans(cast: Cast) -> list[tuple[Span, Actor]]:
     found: list[tuple[Span, Actor]] = [(span, "ego") for span in cast.ego]
     for mention in cast.others:
@@ -187,10 +206,14 @@ def read_clauses(cast: Cast) -> list[Clause]:
         if word == "and" and _BETWEEN.search(text, cuts[-1][1], match.start()):
             continue  # "between the ego and the van" joins two places, not two clauses
         cuts.append((match.start(), match.end(), word))
-    # A participle right after an actor opens a clause about it ("a car turning left").
+    # A participle right after an actor opens a clause about it ("a car turning left"),
+    # but a past form after a place ("in the lane to the right of the AV swerved left") is
+    # the main verb of the subject before the place, unless it says a state ("parked").
     for span, _actor in spans:
         found = _PARTICIPLE.match(text, span.end)
         if found and found.group(1).lower() not in _NOT_PARTICIPLE and "," not in found.group(0):
+            if _governed(text, span) and _main_verb(found.group(1)):
+                continue
             cuts.append((found.start(1), found.start(1), "~participle"))
     cuts.sort()
     clauses: list[Clause] = []
