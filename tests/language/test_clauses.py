@@ -89,6 +89,10 @@ def _subject_of(text: str, words: str) -> str | None:
         ),
         ("A child steps out from behind a horsebox parked at the kerb.", "parked", "a horsebox"),
         ("We pass a coach halted in the far lane.", "halted", "a coach"),
+        # a participle opening the sentence is the next clause's subject's, and the actor
+        # after it is its object; a word that opens an actor's name is no participle
+        ("Overtaking a milk float on the hill, the AV meets a van.", "Overtaking", "ego"),
+        ("oncoming hatchback goes straight, the ego waits.", "goes straight", "oncoming hatchback"),
     ],
 )
 def test_each_verb_has_the_subject_of_its_clause(text: str, words: str, subject: str) -> None:

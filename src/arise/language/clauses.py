@@ -60,6 +60,28 @@ def _main_verb(word: str) -> bool:
     return word.lower().endswith("ed") and not class_pattern("state_participle").fullmatch(word)
 
 
+def _participle_opening(cast: Cast, begin: int, after: tuple[int, int, str] | None) -> bool:
+    """Whether the clause at `begin` is a participle phrase opening its sentence and ended by
+    a comma ("Overtaking a tractor on the hill, the ego ..."): the subject is the next
+    clause's, and an actor named in it is the participle's object. Not a word that opens
+    an actor's own name ("oncoming box truck goes straight, ...")."""
+    text = cast.text
+    if after is None or after[2] != ",":
+        return False
+    sentence = text[:begin].rstrip()
+    if sentence and sentence[-1] not in ".!?;:":
+        return False
+    first = re.compile(r"\s*(\w+)").match(text, begin)
+    if first is None or any(
+        phrase_start(text, span.start) <= first.start(1) < span.end
+        for mention in cast.others
+        for span in mention.spans
+    ):
+        return False
+    word = first.group(1).lower()
+    return word.endswith("ing") and word not in _NOT_PARTICIPLE
+
+
 def _spans(cast: Cast) -> list[tuple[Span, Actor]]:
     found: list[tuple[Span, Actor]] = [(span, "ego") for span in cast.ego]
     for mention in cast.others:
@@ -238,6 +260,8 @@ def read_clauses(cast: Cast) -> list[Clause]:
             )
             if subject is None and opener != "~participle":
                 subject = _opening_actor(cast, spans, begin, end)
+        elif _participle_opening(cast, begin, cuts[index + 1] if index + 1 < len(cuts) else None):
+            subject = None  # "Overtaking a tractor, the ego ...": the tractor is its object
         else:
             subject = _opening_actor(cast, spans, begin, end)
         inverted = _follows_its_verb(cast, spans, subject, begin, end)

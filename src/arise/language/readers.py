@@ -837,12 +837,12 @@ def subject_of(cast: Cast, position: int) -> Mention | str | None:
 
 
 def read_ego_overtaking(reading: Reading) -> None:
-    """An ego that overtakes the adversary changes lanes to the left, from behind it in the
-    same lane (right-hand traffic); only where no other words give the ego's maneuver or the
-    adversary's start. Overtaking through the oncoming lane is a bypass."""
+    """An ego that overtakes changes lanes to the left, and an adversary it overtakes starts
+    ahead of it in its lane (right-hand traffic); only where no other words give the ego's
+    maneuver or the adversary's start. Overtaking through the oncoming lane is a bypass."""
     adversary = reading.adversary
-    if adversary is None or adversary.cls not in VEHICLE_CLASSES:
-        return
+    if adversary is not None and adversary.cls not in VEHICLE_CLASSES:
+        return  # going by a walker or a rider needs no lane change
     if "ego_maneuver" in reading.facts:
         return
     text = reading.cast.text
@@ -872,7 +872,7 @@ def read_ego_overtaking(reading: Reading) -> None:
             reading.facts[name] = GroundedFact(
                 name=name, value=value, source=FactSource.TEXT, quote=quote
             )
-        if "spawn_position" not in reading.facts:
+        if adversary is not None and "spawn_position" not in reading.facts:
             reading.facts["spawn_position"] = GroundedFact(
                 name="spawn_position",
                 value=RelativePosition.AHEAD_SAME_LANE.value,
