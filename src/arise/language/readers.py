@@ -843,8 +843,11 @@ def read_ego_overtaking(reading: Reading) -> None:
     adversary = reading.adversary
     if adversary is not None and adversary.cls not in VEHICLE_CLASSES:
         return  # going by a walker or a rider needs no lane change
-    if "ego_maneuver" in reading.facts:
-        return
+    said = reading.facts.get("ego_maneuver")
+    if said is not None and (
+        said.value != EgoManeuver.CHANGE_LANE.value or "ego_lane_side" in reading.facts
+    ):
+        return  # a lane change with no side said: overtaking gives the side
     text = reading.cast.text
     book = rulebook()
     for match in book.hits(Fact.EGO_OVERTAKES, text):
@@ -921,7 +924,13 @@ def read_maneuvers(reading: Reading) -> None:
         subject = subject_of(cast, position)
         if subject is None and re.match(r"unprotected", words, re.I):
             subject = "ego"
-        if subject == "ego" and ego is None:
+        # Going straight is what the ego does until it does something else: a lane change
+        # said after it in the body is the maneuver ("was travelling straight ... pulled
+        # out to pass"); a heading's words come last and decide nothing here.
+        if subject == "ego" and (
+            ego is None
+            or (ego[0] is EgoManeuver.GO_STRAIGHT and kind == "change_lane" and position >= heading)
+        ):
             maneuver = {
                 "turn_left": EgoManeuver.TURN_LEFT,
                 "turn_right": EgoManeuver.TURN_RIGHT,
