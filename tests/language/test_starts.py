@@ -150,3 +150,35 @@ def test_a_lead_ahead_of_an_ego_held_at_a_red_waits_too() -> None:
 def test_two_road_users_each_between_the_ego_and_the_other_read_once() -> None:
     text = "A moped filters up between the ego and a van. The van creeps between the ego and the moped."
     assert read_description(text).adversary is not None
+
+
+@pytest.mark.parametrize(
+    ("text", "start"),
+    [
+        # at a junction, a car, van, truck or bus placed by a side alone is on the road
+        # across the ego's
+        (
+            "At the all-way stop a minibus on the ego's right does not wait its turn.",
+            "crossing_road_from_right",
+        ),
+        (
+            "At the uncontrolled crossroads a tanker to our left keeps coming.",
+            "crossing_road_from_left",
+        ),
+        # ... but not a lane said, a rider filtering, or an ego that turns
+        ("At the lights a horsebox in the lane on our left pulls ahead.", "adjacent_lane_left"),
+        ("At the lights a moped on the left filters past the ego.", "adjacent_lane_left"),
+        (
+            "The ego turns left at the crossroads; a tanker on its right keeps pace.",
+            "adjacent_lane_right",
+        ),
+        # a road across the ego's, said by its side
+        (
+            "A pickup on the road to our right rolled out into the junction.",
+            "crossing_road_from_right",
+        ),
+        ("Another vehicle crossing from the driver's side.", "crossing_road_from_left"),
+    ],
+)
+def test_a_side_at_a_junction_is_the_crossing_road(text: str, start: str) -> None:
+    assert read_description(text).facts["spawn_position"].value == start

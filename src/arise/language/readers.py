@@ -674,7 +674,13 @@ def read_position(
             else None
         )
     position = best[2]
-    if best[:2] in damage and position in _ADJACENT.values() and _crosses_there(cast, mention):
+    if (
+        position in _ADJACENT.values()
+        and (best[:2] in damage or _side_alone(mention, best[3]))
+        and _crosses_there(cast, mention)
+    ):
+        # "struck the AV on its driver's side", "a car on the ego's left at the four-way
+        # stop": at a junction, the crossing road from that side
         position = _CROSSING[_SIDE_OF[position]]
     if mention.cls.is_walker and position in _ADJACENT.values():
         # A walker "from the passenger side", "in the lane on the right": no walker starts
@@ -706,11 +712,29 @@ def ego_turns(cast: Cast) -> frozenset[str]:
     )
 
 
+#: Words with a side that put a road user beside the ego, in a lane of its road.
+_BESIDE_WORDS = re.compile(
+    r"\b(?:lanes?|beside|alongside|next to|abreast|level with|passing|overtak\w*|filter\w*)\b",
+    re.I,
+)
+
+
+def _side_alone(mention: Mention, words: str) -> bool:
+    """Whether a car, van, truck or bus is placed by a side alone ("on the left", "to the
+    ego's right"), with no lane or word of going along beside the ego; two-wheelers filter
+    beside the ego at a junction as well."""
+    return (
+        mention.cls.is_vehicle
+        and not mention.cls.is_two_wheeler
+        and _BESIDE_WORDS.search(words) is None
+    )
+
+
 def _crosses_there(cast: Cast, mention: Mention) -> bool:
-    """Whether a road user that hit the ego's side came along the crossing road: the scene
-    is a junction (its road words, else traffic-control words), the ego does not turn (one
-    going its way hits a turning ego's side too) and the road user's words say no lane
-    change, which would put it beside the ego."""
+    """Whether a road user on the ego's side (hit it there, or said to be there) came along
+    the crossing road: the scene is a junction (its road words, else traffic-control
+    words), the ego does not turn (one going its way hits a turning ego's side too) and the
+    road user's words say no lane change, which would put it beside the ego."""
     if ego_turns(cast):
         return False
     road = rulebook().by_order(Fact.ROAD, cast.text)
