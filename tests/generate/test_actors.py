@@ -32,7 +32,7 @@ from arise.validate.types import (
     Stage,
     TracePoint,
 )
-from arise.vocabulary import ActorRole, RelativePosition, StartDetail
+from arise.vocabulary import ActorRole, EgoPlan, RelativePosition, StartDetail
 from tests.fakes import FakeValidator, ScriptedProvider, failed, passed
 
 TRUCKS = (
@@ -586,3 +586,33 @@ def test_only_a_start_read_in_the_exit_lane_takes_the_exit_lanes_spawn(
     assert (spec.start_detail is StartDetail.EXIT_LANE) is exit_lane
     [spawn] = found.chosen[Component.SPAWN]
     assert ("exit_lane" in spawn.tags) is exit_lane, spawn.id
+
+
+def test_a_parked_van_on_the_street_the_ego_turns_onto_is_placed_on_that_street(
+    kb: KnowledgeBase, maps: dict[str, frozenset[str]]
+) -> None:
+    text = (
+        "The AV was turning left onto Marlow Street. A delivery van was parked on Marlow"
+        " Street, and a scooter came the other way."
+    )
+    spec, found = retrieved(kb, maps, text, "a scooter")
+    [van] = spec.actors
+    assert van.role is ActorRole.PARKED
+    assert van.start_detail is StartDetail.EXIT_LANE
+    [placed] = found.actors
+    assert placed.spawn.id == "spawn.junction_exit_lane_ahead"
+
+
+def test_a_parked_truck_the_ego_goes_round_through_the_oncoming_lane_stays_in_its_lane(
+    kb: KnowledgeBase, maps: dict[str, frozenset[str]]
+) -> None:
+    text = (
+        "A removal lorry is parked ahead in the ego's lane; the ego pulls out to pass it"
+        " while a moped comes the other way."
+    )
+    spec, found = retrieved(kb, maps, text, "a moped")
+    assert spec.ego_plan is EgoPlan.BYPASS
+    [lorry] = spec.actors
+    assert lorry.role is ActorRole.PARKED
+    [placed] = found.actors
+    assert "curb" not in placed.spawn.id and "roadside" not in placed.spawn.id, placed.spawn.id

@@ -182,3 +182,16 @@ def test_two_road_users_each_between_the_ego_and_the_other_read_once() -> None:
 )
 def test_a_side_at_a_junction_is_the_crossing_road(text: str, start: str) -> None:
     assert read_description(text).facts["spawn_position"].value == start
+
+
+def test_a_vehicle_that_waits_on_the_street_the_ego_turns_onto_is_in_its_lane() -> None:
+    reading = read_description(
+        "I was turning right onto Hatch Lane, where a skip lorry stood on Hatch Lane."
+    )
+    assert reading.facts["spawn_position"].value == "ahead_same_lane"
+    assert reading.facts["start_detail"].value == "exit_lane"
+    # one that drives on that street is not placed there by the street alone
+    moving = read_description(
+        "I was turning right onto Hatch Lane when a skip lorry drove along Hatch Lane."
+    )
+    assert "start_detail" not in moving.facts

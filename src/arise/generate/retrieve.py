@@ -471,7 +471,11 @@ def retrieve(
         spawn_pool = kb.of(Component.SPAWN)
         geometries = _prefer(
             geometries,
-            lambda g: sum(1 for a in hosted if _actor_spawns(a, spawn_pool, g, set(), False)),
+            lambda g: sum(
+                1
+                for a in hosted
+                if _actor_spawns(a, spawn_pool, g, set(), False, spec.ego_plan is EgoPlan.BYPASS)
+            ),
         )
     if spec.no_adversary:
         return _scene_without_adversary(
@@ -758,10 +762,17 @@ PARKED_AT_KERB = {
 }
 
 
-def _actor_start(actor: Actor) -> RelativePosition | None:
+def _actor_start(actor: Actor, bypassed: bool = False) -> RelativePosition | None:
     """Where to place the actor: its start, else its role's; a parked vehicle said to be
-    in a lane is at that side's kerb (`PARKED_AT_KERB`)."""
-    if actor.role is ActorRole.PARKED and actor.start in PARKED_AT_KERB:
+    in a lane is at that side's kerb (`PARKED_AT_KERB`), but one on the street a turning
+    ego enters stays there (the exit lane's spawn), and so does one ahead that the ego
+    goes round through the oncoming lane (`bypassed`): at the kerb, it would block nothing."""
+    if (
+        actor.role is ActorRole.PARKED
+        and actor.start in PARKED_AT_KERB
+        and actor.start_detail is not StartDetail.EXIT_LANE
+        and not (bypassed and actor.start is RelativePosition.AHEAD_SAME_LANE)
+    ):
         return PARKED_AT_KERB[actor.start]
     return actor.start or ROLE_STARTS.get(actor.role)
 
@@ -781,10 +792,15 @@ def _own_spawn(actor: Actor) -> bool:
 
 
 def _actor_spawns(
-    actor: Actor, spawns: list[Entry], geometry: Entry, used: set[str], conflict_taken: bool
+    actor: Actor,
+    spawns: list[Entry],
+    geometry: Entry,
+    used: set[str],
+    conflict_taken: bool,
+    bypassed: bool = False,
 ) -> list[Entry]:
     """The spawns that can place `actor` on this geometry, on its side or the next best."""
-    start = _actor_start(actor)
+    start = _actor_start(actor, bypassed)
     if start is None:
         return []
     cls = actor.scenic_class.as_adversary
@@ -819,6 +835,7 @@ def place_actors(
     any other one that keeps to its lane or route. An actor no spawn fits is left to the
     misc entries, with a note."""
     placed: list[PlacedActor] = []
+    bypassed = spec.ego_plan is EgoPlan.BYPASS
     used = {e.id for e in result.chosen.get(Component.SPAWN, [])}
     conflict_taken = any(CONFLICT_ROUTE in e.needs for e in result.chosen.get(Component.SPAWN, []))
 
@@ -836,7 +853,7 @@ def place_actors(
         if room <= 0:
             result.notes.append(f"actors: only {MAX_ACTORS} placed; {actor.quote!r} left out")
             break
-        start = _actor_start(actor)
+        start = _actor_start(actor, bypassed)
         if start is None:
             continue
         words = spec.participants[index] if index < len(spec.participants) else actor.quote
@@ -851,6 +868,7 @@ def place_actors(
             used,
             conflict_taken,
             fits_a_map,
+            bypassed,
         )
         if pair is None:
             result.notes.append(
@@ -916,6 +934,7 @@ def _actor_entries(
     used: set[str],
     conflict_taken: bool,
     fits_a_map: Callable[[list[Entry]], bool],
+    bypassed: bool = False,
 ) -> tuple[Entry, Entry] | None:
     """The best spawn and behavior (as written, not yet copied) for one actor."""
     cls = actor.scenic_class.as_adversary
@@ -924,7 +943,7 @@ def _actor_entries(
     def side(spawn: Entry) -> Fit:
         return approach_fit(start, pair_approach(geometry, spawn))
 
-    spawns = _actor_spawns(actor, kb.of(Component.SPAWN), geometry, used, conflict_taken)
+    spawns = _actor_spawns(actor, kb.of(Component.SPAWN), geometry, used, conflict_taken, bypassed)
     tags = set(SPAWN_TAGS[start])
     # "stopped in the exit lane" of a turning ego: the exit lane's spawn, where one fits.
     exit_lane = actor.start_detail is StartDetail.EXIT_LANE

@@ -60,6 +60,9 @@ def _main_verb(word: str) -> bool:
     return word.lower().endswith("ed") and not class_pattern("state_participle").fullmatch(word)
 
 
+_FIRST_WORD = re.compile(r"\s*(\w+)")
+
+
 def _participle_opening(cast: Cast, begin: int, after: tuple[int, int, str] | None) -> bool:
     """Whether the clause at `begin` is a participle phrase opening its sentence and ended by
     a comma ("Overtaking a tractor on the hill, the ego ..."): the subject is the next
@@ -71,7 +74,7 @@ def _participle_opening(cast: Cast, begin: int, after: tuple[int, int, str] | No
     sentence = text[:begin].rstrip()
     if sentence and sentence[-1] not in ".!?;:":
         return False
-    first = re.compile(r"\s*(\w+)").match(text, begin)
+    first = _FIRST_WORD.match(text, begin)
     if first is None or any(
         phrase_start(text, span.start) <= first.start(1) < span.end
         for mention in cast.others

@@ -648,7 +648,7 @@ def read_position(
             # unless the actor's words place it ("in that lane ... hit the AV's rear").
             fallback = (target.start, -1, RelativePosition.AHEAD_SAME_LANE, target.quote)
             turning = bool(ego_turns(cast)) if turning is None else turning
-            if turning:  # "stopped in the lane the ego enters" as it turns: that road's
+            if turning:  # "stopped in the lane the ego enters" as it turns: on that road
                 routed.add(fallback[:2])
         behind_here = (
             best is not None and best[2] is RelativePosition.BEHIND_SAME_LANE and best[0] >= start
@@ -667,6 +667,10 @@ def read_position(
         emerged = _by_another(cast, mention)
         if emerged is not None:
             return emerged
+    if best is None and not _walks_or_rides(mention):
+        waits_there = _waits_on_exit_street(cast, mention, stretches)
+        if waits_there is not None:
+            return waits_there
     if best is None:
         return (
             (_by_another(cast, mention) or _ego_verb_before(cast, mention, Fact.EGO_PASSES))
@@ -1009,6 +1013,27 @@ def _exit_street_named(cast: Cast, words: str) -> str | None:
     return None
 
 
+def _waits_on_exit_street(
+    cast: Cast, mention: Mention, stretches: list[tuple[int, int]]
+) -> StartFact | None:
+    """A vehicle that stays put on the street the ego turns onto, named ("turning left
+    onto Tenter Street ... a van double-parked on Tenter Street"): in that street's lane,
+    ahead on the ego's route."""
+    if any(moves(cast.text, a, b) for a, b in stretches):
+        return None
+    for start, end in stretches:
+        street = _exit_street_named(cast, cast.text[start:end])
+        if street is not None:
+            return StartFact(
+                name="spawn_position",
+                value=RelativePosition.AHEAD_SAME_LANE.value,
+                source=FactSource.TEXT,
+                quote=street,
+                detail=StartDetail.EXIT_LANE,
+            )
+    return None
+
+
 def read_start_detail(reading: Reading) -> None:
     """Which end of the lane beside the ego the adversary starts at, or which corner of the
     street a turning ego enters; a walker on that street starts on the side the ego turns to."""
@@ -1145,12 +1170,19 @@ def read_overtake_past_oncoming(reading: Reading) -> None:
 
 def read_ego_stopped(reading: Reading) -> None:
     """Whether the ego stands still for the whole scene, from words whose subject it is; not
-    when other words give it a maneuver ("stopped at the signal waiting to turn left")."""
+    when other words give it a maneuver ("stopped at the signal waiting to turn left"), nor
+    when it sets off later ("as we pulled off")."""
     told = reading.facts.get("ego_maneuver")
     if told is not None and told.value != EgoManeuver.GO_STRAIGHT.value:
         return
-    for hit in rulebook().hits(Fact.EGO_HELD, reading.cast.text):
-        if subject_of(reading.cast, hit.start) == "ego":
+    cast = reading.cast
+    for hit in rulebook().hits(Fact.EGO_HELD, cast.text):
+        if subject_of(cast, hit.start) == "ego":
+            if any(
+                off.start > hit.start and subject_of(cast, off.start) == "ego"
+                for off in rulebook().hits(Fact.EGO_MOVES_OFF, cast.text)
+            ):
+                return  # "waiting at the light ... as we pulled off": it sets off
             reading.facts["ego_stopped"] = GroundedFact(
                 name="ego_stopped", value="true", source=FactSource.TEXT, quote=hit.quote
             )

@@ -58,6 +58,7 @@ class Fact(StrEnum):
     LANE_SIDE = "lane_side"  # the side an actor's lane change goes to
     EGO_PLAN = "ego_plan"  # what the ego does besides its route (an EgoPlan)
     EGO_HELD = "ego_held"  # the ego stands still for the scene
+    EGO_MOVES_OFF = "ego_moves_off"  # the ego sets off after standing ("as we pulled off")
     EGO_ON_RAMP = "ego_on_ramp"  # the ego comes up an on-ramp
     ROAD = "road"  # the road type (a RoadType), or "mid_block"
     SKY = "sky"  # a weather word: HardRain, SoftRain, MidRain, Wet, Cloudy, Clear
@@ -255,6 +256,7 @@ def _values(fact: Fact) -> frozenset[str] | None:
         Fact.MOVING: frozenset({"true"}),
         Fact.TURNS_BACK: frozenset({"true"}),
         Fact.EGO_HELD: frozenset({"true"}),
+        Fact.EGO_MOVES_OFF: frozenset({"true"}),
         Fact.EGO_ON_RAMP: frozenset({"true"}),
         Fact.ROAD: frozenset({*RoadType, "mid_block"}),
         Fact.CONTACT: frozenset({"rear", "front", "left", "right"}),
