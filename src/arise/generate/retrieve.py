@@ -465,6 +465,7 @@ def retrieve(
         geometry_pool,
     )
     hosted = [a for a in spec.actors if _own_spawn(a)]
+    bypassed = spec.ego_plan is EgoPlan.BYPASS
     if hosted and not spec.no_adversary:
         # Among equals, the geometry where the other road users have a spawn of their own
         # (an oncoming bus needs an oncoming lane); the adversary's fit still decides first.
@@ -474,7 +475,7 @@ def retrieve(
             lambda g: sum(
                 1
                 for a in hosted
-                if _actor_spawns(a, spawn_pool, g, set(), False, spec.ego_plan is EgoPlan.BYPASS)
+                if _actor_spawns(a, _actor_start(a, bypassed), spawn_pool, g, set(), False)
             ),
         )
     if spec.no_adversary:
@@ -623,7 +624,7 @@ def _misc_fit(actor: Actor) -> Callable[[Entry], int]:
     the lane a turning ego enters), an occluder entry for an occluder, and as many objects
     as the text counts (one parked car is not a row of three; "several cars" are)."""
 
-    detail = DETAIL_TAGS[actor.start_detail] if actor.start_detail else frozenset()
+    detail = _actor_detail_tags(actor)
 
     def fit(entry: Entry) -> int:
         made = len(_created(entry))
@@ -762,6 +763,11 @@ PARKED_AT_KERB = {
 }
 
 
+def _actor_detail_tags(actor: Actor) -> frozenset[str]:
+    """The entry tags the actor's start detail asks for (none without one)."""
+    return DETAIL_TAGS[actor.start_detail] if actor.start_detail else frozenset()
+
+
 def _actor_start(actor: Actor, bypassed: bool = False) -> RelativePosition | None:
     """Where to place the actor: its start, else its role's; a parked vehicle said to be
     in a lane is at that side's kerb (`PARKED_AT_KERB`), but one on the street a turning
@@ -793,14 +799,14 @@ def _own_spawn(actor: Actor) -> bool:
 
 def _actor_spawns(
     actor: Actor,
+    start: RelativePosition | None,
     spawns: list[Entry],
     geometry: Entry,
     used: set[str],
     conflict_taken: bool,
-    bypassed: bool = False,
 ) -> list[Entry]:
-    """The spawns that can place `actor` on this geometry, on its side or the next best."""
-    start = _actor_start(actor, bypassed)
+    """The spawns that can place `actor`, starting at `start` (`_actor_start`), on this
+    geometry, on its side or the next best."""
     if start is None:
         return []
     cls = actor.scenic_class.as_adversary
@@ -868,7 +874,6 @@ def place_actors(
             used,
             conflict_taken,
             fits_a_map,
-            bypassed,
         )
         if pair is None:
             result.notes.append(
@@ -934,7 +939,6 @@ def _actor_entries(
     used: set[str],
     conflict_taken: bool,
     fits_a_map: Callable[[list[Entry]], bool],
-    bypassed: bool = False,
 ) -> tuple[Entry, Entry] | None:
     """The best spawn and behavior (as written, not yet copied) for one actor."""
     cls = actor.scenic_class.as_adversary
@@ -943,11 +947,10 @@ def _actor_entries(
     def side(spawn: Entry) -> Fit:
         return approach_fit(start, pair_approach(geometry, spawn))
 
-    spawns = _actor_spawns(actor, kb.of(Component.SPAWN), geometry, used, conflict_taken, bypassed)
+    spawns = _actor_spawns(actor, start, kb.of(Component.SPAWN), geometry, used, conflict_taken)
     tags = set(SPAWN_TAGS[start])
     # "stopped in the exit lane" of a turning ego: the exit lane's spawn, where one fits.
-    exit_lane = actor.start_detail is StartDetail.EXIT_LANE
-    detail = DETAIL_TAGS[StartDetail.EXIT_LANE] if exit_lane else frozenset()
+    detail = _actor_detail_tags(actor)
     spawns = _prefer(
         _prefer(
             _ranked(retriever, query(f"{words} {start.value}"), Component.SPAWN, spawns),

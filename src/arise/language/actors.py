@@ -16,7 +16,7 @@ from arise.language.facts import start_detail
 from arise.language.readers import (
     Reading,
     cue_before,
-    moves,
+    moves_in,
     read_start,
     read_stationary,
     words_of,
@@ -98,7 +98,7 @@ def read_actor(cast: Cast, mention: Mention) -> CastActor:
     position = read_start(cast, mention)
     start = RelativePosition(position.value) if position is not None else None
     stationary = read_stationary(cast, mention) is not None or bool(
-        "waits" in cues and not any(moves(text, a, b) for a, b in stretches)
+        "waits" in cues and not moves_in(text, stretches)
     )
     role = _role(
         cls=mention.cls,
@@ -127,7 +127,7 @@ def _queued_ahead(cast: Cast, mention: Mention, actor: CastActor) -> bool:
     return (
         actor.role is ActorRole.LEAD
         and actor.start is RelativePosition.AHEAD_SAME_LANE
-        and not any(moves(cast.text, a, b) for a, b in words_of(cast, mention))
+        and not moves_in(cast.text, words_of(cast, mention))
     )
 
 

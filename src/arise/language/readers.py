@@ -562,7 +562,6 @@ def read_position(
     fallback: tuple[int, int, RelativePosition, str] | None = None  # from a weak rule
     damage: set[tuple[int, int]] = set()  # the cues read from where the ego was touched
     routed: set[tuple[int, int]] = set()  # the cues on the road a turning ego enters
-    turning: bool | None = None  # whether the ego turns, asked at the first such cue
     stretches = words_of(cast, mention)
     side_said = next(
         (hit for a, b in stretches if (hit := rulebook().first(Fact.BARE_SIDE, cast.text, a, b))),
@@ -584,10 +583,8 @@ def read_position(
                 continue  # the words tell what the clause's subject does, and it is another
             if _pronoun_means_another(cast, mention, hit):
                 continue  # "behind it" of a car named before: placed by that car
-            if hit.rule.after_turn:
-                turning = bool(ego_turns(cast)) if turning is None else turning
-                if not turning:
-                    continue  # "in the side street" of an ego that does not turn into it
+            if hit.rule.after_turn and not ego_turns(cast):
+                continue  # "in the side street" of an ego that does not turn into it
             seen_values.add((hit.value, hit.rule.weak))
             if hit.end <= end:
                 cue = (hit.start, hit.order, RelativePosition(hit.value), hit.quote)
@@ -647,8 +644,7 @@ def read_position(
             # The lane the ego turns into, with no lane change said: ahead on its route,
             # unless the actor's words place it ("in that lane ... hit the AV's rear").
             fallback = (target.start, -1, RelativePosition.AHEAD_SAME_LANE, target.quote)
-            turning = bool(ego_turns(cast)) if turning is None else turning
-            if turning:  # "stopped in the lane the ego enters" as it turns: on that road
+            if ego_turns(cast):  # "stopped in the lane the ego enters" as it turns: on that road
                 routed.add(fallback[:2])
         behind_here = (
             best is not None and best[2] is RelativePosition.BEHIND_SAME_LANE and best[0] >= start
@@ -696,7 +692,7 @@ def read_position(
     exit_lane = (
         best[:2] in routed
         and position is RelativePosition.AHEAD_SAME_LANE
-        and not any(moves(cast.text, a, b) for a, b in stretches)
+        and not moves_in(cast.text, stretches)
     )
     return StartFact(
         name="spawn_position",
@@ -707,8 +703,10 @@ def read_position(
     )
 
 
+@lru_cache(maxsize=16)
 def ego_turns(cast: Cast) -> frozenset[str]:
-    """The turns ("turn_left", "turn_right") the text has the ego make."""
+    """The turns ("turn_left", "turn_right") the text has the ego make; cached, as every
+    actor's start asks for them."""
     return frozenset(
         hit.value
         for hit in rulebook().hits(Fact.TURN, cast.text)
@@ -1019,7 +1017,7 @@ def _waits_on_exit_street(
     """A vehicle that stays put on the street the ego turns onto, named ("turning left
     onto Tenter Street ... a van double-parked on Tenter Street"): in that street's lane,
     ahead on the ego's route."""
-    if any(moves(cast.text, a, b) for a, b in stretches):
+    if moves_in(cast.text, stretches):
         return None
     for start, end in stretches:
         street = _exit_street_named(cast, cast.text[start:end])
@@ -1097,6 +1095,11 @@ def read_start_detail(reading: Reading) -> None:
 def moves(text: str, start: int, end: int) -> bool:
     """Whether text[start:end] has words that move an actor ("pulls out", "crosses")."""
     return rulebook().first(Fact.MOVING, text, start, end) is not None
+
+
+def moves_in(text: str, stretches: list[tuple[int, int]]) -> bool:
+    """Whether any of these stretches of text has words that move an actor."""
+    return any(moves(text, start, end) for start, end in stretches)
 
 
 def read_ego_on_ramp(reading: Reading) -> None:
