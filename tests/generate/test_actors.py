@@ -198,6 +198,25 @@ def test_occluders_and_props_are_still_misc_entries(
     assert [e.id for e in found.chosen[Component.MISC]] == ["misc.occluder_parked_van"]
 
 
+def test_an_occluder_at_the_kerb_across_from_the_adversary_stands_where_the_text_puts_it(
+    kb: KnowledgeBase, maps: dict[str, frozenset[str]]
+) -> None:
+    # the occluder entries stand by the adversary; a cyclist coming the other way is on
+    # the far side, and the van is at the right kerb: it gets a parked spawn of its own
+    text = (
+        "A cyclist comes the other way while a girl steps out from behind a van parked at "
+        "the right kerb."
+    )
+    spec, found = retrieved(kb, maps, text, "A cyclist")
+    assert spec.spawn_position is RelativePosition.ONCOMING
+    [van] = [a for a in spec.actors if a.scenic_class.value == "Van"]
+    assert van.start is RelativePosition.ROADSIDE_RIGHT
+    [placed] = [p for p in found.actors if p.actor is van]
+    assert placed.spawn.approach is not None and placed.spawn.approach.value == "roadside_right"
+    assert set(placed.behavior.tags) & {"static", "stalled"}
+    assert not any("occluder" in e.tags for e in found.chosen[Component.MISC])
+
+
 def test_an_occluder_the_text_puts_in_the_oncoming_lane_drives_there(
     kb: KnowledgeBase, maps: dict[str, frozenset[str]]
 ) -> None:

@@ -52,6 +52,13 @@ def test_nhtsa_phrasing_has_the_ego_and_one_other_vehicle() -> None:
     assert len(cast.others[0].spans) == 2, "'the other vehicle' is the one named before"
 
 
+def test_nhtsa_notes_name_the_ego_vehicle_in_lower_case_at_a_clause_start() -> None:
+    text = "Vehicle turning right; stalled coach obstructs travel lane; vehicle steers around."
+    cast = parse(text)
+    assert [m.cls.value for m in cast.others] == ["Bus"]
+    assert len(cast.ego) == 2
+
+
 def test_numbered_parties_the_autonomous_one_is_the_ego() -> None:
     text = (
         "V1 was northbound. V2, a self-driving shuttle, was behind V1 and touched its "

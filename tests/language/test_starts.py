@@ -195,3 +195,40 @@ def test_a_vehicle_that_waits_on_the_street_the_ego_turns_onto_is_in_its_lane() 
         "I was turning right onto Hatch Lane when a skip lorry drove along Hatch Lane."
     )
     assert "start_detail" not in moving.facts
+
+
+@pytest.mark.parametrize(
+    ("text", "start"),
+    [
+        # a vehicle going straight on, its side unsaid, as the ego turns left: it comes
+        # the other way (the left turn across the path of oncoming traffic)
+        ("Unit 1 turned left on the green. Unit 2, a tanker, continued straight.", "oncoming"),
+        (
+            "The AV was turning left when a hatchback going straight on hit its right side.",
+            "oncoming",
+        ),
+        # ... not while the ego turns right, and not with a side said
+        ("Unit 1 turned right on the green. Unit 2, a tanker, continued straight.", None),
+        (
+            "The AV was turning left when a hatchback from the right going straight on hit it.",
+            "crossing_road_from_right",
+        ),
+    ],
+)
+def test_straight_on_across_a_left_turn_is_oncoming(text: str, start: str | None) -> None:
+    fact = read_description(text).facts.get("spawn_position")
+    assert (fact.value if fact else None) == start
+
+
+def test_the_one_that_blocks_the_view_is_not_the_adversary_even_when_the_model_says_so() -> None:
+    text = (
+        "The AV turned left; a pickup waiting opposite screened its view of a quad bike "
+        "that came straight on."
+    )
+    quoted = read_description(text, adversary_quote="a pickup")
+    assert quoted.adversary is not None and quoted.adversary.quote == "a quad bike"
+    # with no one else playing, the model's pick stands
+    alone = read_description(
+        "The AV turned left; a pickup waiting opposite screened its view.", "a pickup"
+    )
+    assert alone.adversary is not None and alone.adversary.quote == "a pickup"

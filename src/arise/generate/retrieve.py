@@ -464,7 +464,7 @@ def retrieve(
         Component.GEOMETRY,
         geometry_pool,
     )
-    hosted = [a for a in spec.actors if _own_spawn(a)]
+    hosted = [a for a in spec.actors if _own_spawn(a, spec.spawn_position)]
     bypassed = spec.ego_plan is EgoPlan.BYPASS
     if hosted and not spec.no_adversary:
         # Among equals, the geometry where the other road users have a spawn of their own
@@ -783,11 +783,39 @@ def _actor_start(actor: Actor, bypassed: bool = False) -> RelativePosition | Non
     return actor.start or ROLE_STARTS.get(actor.role)
 
 
-def _own_spawn(actor: Actor) -> bool:
+#: The side of the road each start is on, seen from the ego (the lane ahead is taken as
+#: the kerb side).
+ROAD_SIDE_OF_START: dict[RelativePosition, str] = {
+    RelativePosition.ROADSIDE_RIGHT: "right",
+    RelativePosition.CROSSING_FROM_RIGHT: "right",
+    RelativePosition.ADJACENT_LANE_RIGHT: "right",
+    RelativePosition.AHEAD_SAME_LANE: "right",
+    RelativePosition.ROADSIDE_LEFT: "left",
+    RelativePosition.CROSSING_FROM_LEFT: "left",
+    RelativePosition.ADJACENT_LANE_LEFT: "left",
+    RelativePosition.ONCOMING: "left",
+}
+
+
+def _across_from_adversary(actor: Actor, adversary: RelativePosition | None) -> bool:
+    """Whether the text puts the actor on the other side of the road from the adversary:
+    then a misc occluder, which stands by the adversary, would stand where the text does
+    not put it (a van parked at the right kerb is not beside a cyclist coming the other
+    way)."""
+    if actor.start is None or adversary is None:
+        return False
+    mine, theirs = ROAD_SIDE_OF_START.get(actor.start), ROAD_SIDE_OF_START.get(adversary)
+    return mine is not None and theirs is not None and mine != theirs
+
+
+def _own_spawn(actor: Actor, adversary: RelativePosition | None = None) -> bool:
     """Whether the actor is a road user placed by a spawn of its own (not a misc entry;
-    the others of a counted adversary take copies of the adversary's)."""
+    the others of a counted adversary take copies of the adversary's). An occluder is a
+    misc entry by the `adversary`'s start, unless the text puts it on the road or across
+    from the adversary."""
     by_misc = actor.role in MISC_ROLES and not (
-        actor.role is ActorRole.OCCLUDER and actor.start in ON_ROAD_STARTS
+        actor.role is ActorRole.OCCLUDER
+        and (actor.start in ON_ROAD_STARTS or _across_from_adversary(actor, adversary))
     )
     return (
         actor.road_user
@@ -853,7 +881,7 @@ def place_actors(
         if actor.role is ActorRole.ADVERSARY:
             placed += _adversary_copies(index, actor, result, len(placed))
             continue
-        if not _own_spawn(actor):
+        if not _own_spawn(actor, spec.spawn_position):
             continue
         room = MAX_ACTORS - len(placed)
         if room <= 0:

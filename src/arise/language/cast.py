@@ -98,6 +98,8 @@ _NHTSA_EGO_ANYWHERE = re.compile(
 # vehicle's lane"): group 1.
 _NHTSA_EGO_AFTER_PREPOSITION = re.compile(
     r"\b(?:into|onto|of|to|with|by|behind|toward|towards|past|from|beside) (vehicle(?:'s)?)\b"
+    # ... or opening a clause of a note in lower case ("...; vehicle steers around")
+    r"|(?:(?<=[;:]\s)|(?<=\s[-=]>\s))(vehicle(?:'s)?)\b"
 )
 # ... and "the vehicle's" (its path, its right side): the typology names the other one "other
 # vehicle" or by its kind.
@@ -291,7 +293,10 @@ def _ego_spans(text: str) -> list[Span]:
     nhtsa = list(_NHTSA_EGO.finditer(text))
     if nhtsa:  # the typology's style: every bare "Vehicle" is the ego
         spans += [Span(*m.span()) for m in _NHTSA_EGO_ANYWHERE.finditer(text)]
-        spans += [Span(*m.span(1)) for m in _NHTSA_EGO_AFTER_PREPOSITION.finditer(text)]
+        spans += [
+            Span(*m.span(1 if m.group(1) else 2))
+            for m in _NHTSA_EGO_AFTER_PREPOSITION.finditer(text)
+        ]
         spans += [Span(*m.span()) for m in _NHTSA_EGO_OWNS.finditer(text)]
     ego_number = _numbered_ego(text)
     if ego_number is not None:

@@ -144,6 +144,7 @@ def words_of(cast: Cast, mention: Mention) -> list[tuple[int, int]]:
     for clause in inverted:
         if clause.subject is mention:
             stretches.append((clause.start, phrase_start(text, mention.spans[0].start)))
+    stretches += _opening_clauses(cast, mention)
     # "... when we pass, he starts suddenly and goes out": a clause opened by a pronoun that
     # stands for this actor is about it too.
     for clause in cast.clauses:
@@ -185,6 +186,31 @@ def words_of(cast: Cast, mention: Mention) -> list[tuple[int, int]]:
         ):
             stretches.append((clause.start, opened))
     return stretches
+
+
+def _opening_clauses(cast: Cast, mention: Mention) -> list[tuple[int, int]]:
+    """The phrases that open a sentence before `mention` is named in it, each a clause the
+    clause model gave to it ("Ahead, in the same lane, a truck ..."): one at a time, back
+    from its phrase, while no one else is named in them."""
+    text = cast.text
+    named = [s for m in cast.others if m is not mention for s in m.spans] + list(cast.ego)
+    found = []
+    for span in mention.spans:
+        at = phrase_start(text, span.start)
+        for clause in reversed(cast.clauses):
+            if clause.end > at:
+                continue
+            if (
+                clause.subject is not mention
+                or clause.explicit
+                or clause.inverted
+                or sentence_end(text, clause.start) < at
+                or any(clause.start <= s.start < clause.end for s in named)
+            ):
+                break
+            found.append((clause.start, clause.end))
+            at = clause.start
+    return found
 
 
 @lru_cache(maxsize=16)
@@ -508,6 +534,8 @@ def _by_another(cast: Cast, mention: Mention) -> GroundedFact | None:
                 position = _SIDED[RelativePosition.CROSSING_FROM_LEFT][_SIDE_OF[theirs]]
             elif hit.value in ("behind", "ahead") and not walker:
                 position = theirs  # behind a car ahead is ahead, behind an oncoming one oncoming
+            elif not walker and theirs is RelativePosition.ONCOMING:
+                position = theirs  # out from behind, past, beside or hidden by an oncoming one
             if position is not None:
                 return GroundedFact(
                     name="spawn_position",
@@ -568,6 +596,7 @@ def read_position(
         None,
     )
     there = _from_there(cast, stretches)
+    walker = mention.cls.is_walker or mention.is_prop
     for start, end in stretches:
         # A rule's `unless` may see a little past the stretch ("from behind | a parked
         # van"); the cue itself must lie inside it. The first hit of each position counts.
@@ -633,7 +662,6 @@ def read_position(
         if weak and fallback is None:
             fallback = min(weak, key=lambda cue: cue[:2])
         if bare and best is None:
-            walker = mention.cls.is_walker or mention.is_prop
             kind = RelativePosition.ROADSIDE_LEFT if walker else RelativePosition.ADJACENT_LANE_LEFT
             best = (bare.start, 99, _SIDED[kind][bare.value], bare.quote)
         # The lane the ego moves into ("a car coming up in that lane"): resolved by the ego's
@@ -663,13 +691,22 @@ def read_position(
         emerged = _by_another(cast, mention)
         if emerged is not None:
             return emerged
+    if by_another and best is not None and best[2] in _ADJACENT.values() and not walker:
+        # "behind it, on its right" of a truck coming the other way: on the truck's road
+        beside = _by_another(cast, mention)
+        if beside is not None and beside.value == RelativePosition.ONCOMING.value:
+            return beside
     if best is None and not _walks_or_rides(mention):
         waits_there = _waits_on_exit_street(cast, mention, stretches)
         if waits_there is not None:
             return waits_there
     if best is None:
         return (
-            (_by_another(cast, mention) or _ego_verb_before(cast, mention, Fact.EGO_PASSES))
+            (
+                _by_another(cast, mention)
+                or _ego_verb_before(cast, mention, Fact.EGO_PASSES)
+                or _straight_across_left_turn(cast, mention, stretches)
+            )
             if by_another
             else None
         )
@@ -682,6 +719,11 @@ def read_position(
         # "struck the AV on its driver's side", "a car on the ego's left at the four-way
         # stop": at a junction, the crossing road from that side
         position = _CROSSING[_SIDE_OF[position]]
+    elif position in _ADJACENT.values() and best[:2] in damage:
+        # "V2 went straight through and struck V1's passenger side" as V1 turned left
+        across = _straight_across_left_turn(cast, mention, stretches)
+        if across is not None:
+            return across
     if mention.cls.is_walker and position in _ADJACENT.values():
         # A walker "from the passenger side", "in the lane on the right": no walker starts
         # in a traffic lane; it stands at that kerb, or comes off it across the road.
@@ -700,6 +742,33 @@ def read_position(
         source=FactSource.TEXT,
         quote=best[3],
         detail=StartDetail.EXIT_LANE if exit_lane else None,
+    )
+
+
+def _straight_across_left_turn(
+    cast: Cast, mention: Mention, stretches: list[tuple[int, int]]
+) -> GroundedFact | None:
+    """A vehicle that goes straight on, its side unsaid, while the ego turns left: the
+    traffic a left turn crosses comes the other way ("V1 turned left; V2, a motorcycle,
+    proceeded straight")."""
+    if mention.cls.is_walker or mention.is_prop or ego_turns(cast) != {"turn_left"}:
+        return None
+    straight = next(
+        (
+            hit
+            for a, b in stretches
+            for hit in rulebook().hits(Fact.TURN, cast.text, a, b)
+            if hit.value == "straight" and subject_of(cast, hit.start) is mention
+        ),
+        None,
+    )
+    if straight is None:
+        return None
+    return GroundedFact(
+        name="spawn_position",
+        value=RelativePosition.ONCOMING.value,
+        source=FactSource.TEXT,
+        quote=straight.quote,
     )
 
 
@@ -1240,25 +1309,37 @@ def choose_adversary(cast: Cast, quote: str | None) -> Mention | None:
     the road users not described as parked or hiding something, nor one someone comes out
     from behind ("walks out from in front of the bus"), the first whose own clause touches
     the ego, else the first that nearly does, else the first; else the first one."""
-    if quote:
-        span = find_quote(cast.text, quote)
-        if span is not None:
-            mention = cast.mention_at(*span)
-            if mention is not None and adversary_type_of(mention.cls) is not None:
-                return mention
-            mentions = [m for m in cast.others if adversary_type_of(m.cls) is not None]
-            named = [m for m in mentions if re.search(rf"\b{re.escape(m.quote)}\b", quote, re.I)]
-            if named:
-                return named[0]
     road_users = [m for m in cast.others if adversary_type_of(m.cls) is not None]
     playing: list[tuple[int, Mention]] = []
+    occluders: list[Mention] = []
     for mention in road_users:
         stretches = words_of(cast, mention)
         if any(rulebook().first(Fact.BACKGROUND, cast.text, a, b) for a, b in stretches):
             continue
         if any(cue_before(Fact.HIDES_BEHIND, cast.text, a, spaced=False) for a, _ in stretches):
             continue
+        if any(
+            hit.value == "occluder"
+            for a, b in stretches
+            for hit in rulebook().hits(Fact.ROLE_CUE, cast.text, a, b)
+        ):
+            occluders.append(mention)  # "a lorry waiting opposite blocked her view of ..."
+            continue
         playing.append((_meeting_rank(cast, mention, stretches), mention))
+    if quote:
+        span = find_quote(cast.text, quote)
+        if span is not None:
+            at = cast.mention_at(*span)
+            if at is not None and adversary_type_of(at.cls) is not None:
+                named = [at]
+            else:
+                named = [
+                    m for m in road_users if re.search(rf"\b{re.escape(m.quote)}\b", quote, re.I)
+                ]
+            # the model's pick, unless the words make it the view's blocker beside one
+            # that plays
+            if named and not (playing and any(named[0] is m for m in occluders)):
+                return named[0]
     # A report's other party is its lowest-numbered one ("V2", "Party 2"), before a truck it
     # only mentions: among equal meetings, that one first.
     numbers = [n for _, m in playing if (n := party_number(cast, m)) is not None]

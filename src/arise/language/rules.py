@@ -102,7 +102,7 @@ class Fact(StrEnum):
     )
     TIMING = "timing"  # when the other moved, seen from the ego: late, early ("just as it passes")
     # words right before another actor that place this one by it: "emerges" ("steps out
-    # from behind a van"), "behind" ("coming up behind the coupe")
+    # from behind a van"), "behind" ("coming up behind the coupe"), "past" ("comes past it")
     BY_ANOTHER = "by_another"
 
 
@@ -273,7 +273,7 @@ def _values(fact: Fact) -> frozenset[str] | None:
         Fact.QUANTITY: frozenset({"speed", "distance", "timing"}),
         Fact.MEETING: frozenset({"contact", "near_miss"}),
         Fact.TIMING: frozenset(Timing),
-        Fact.BY_ANOTHER: frozenset({"emerges", "behind", "ahead"}),
+        Fact.BY_ANOTHER: frozenset({"emerges", "behind", "ahead", "past"}),
         **{
             fact: frozenset({"true"})
             for fact in (
