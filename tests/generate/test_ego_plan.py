@@ -106,6 +106,23 @@ def test_a_stated_plan_gets_a_geometry_that_acts_it_out(
 
 
 @pytest.mark.parametrize(
+    ("turn", "tag"), [("turn_left", "left_turn"), ("turn_right", "right_turn")]
+)
+def test_a_turning_ego_that_goes_round_something_keeps_its_turn(
+    kb: KnowledgeBase, maps: dict[str, frozenset[str]], turn: str, tag: str
+) -> None:
+    # no junction geometry acts out a bypass: the turn the text states still decides
+    spec = _spec(
+        ego_plan=EgoPlan.BYPASS,
+        road_type="intersection",
+        ego_maneuver=turn,
+        spawn_position="adjacent_lane_left",
+    )
+    geometry = kb.get(_geometry(spec, kb, maps))
+    assert tag in geometry.tags or tag in geometry.id, geometry.id
+
+
+@pytest.mark.parametrize(
     "changes",
     [
         {},

@@ -249,3 +249,24 @@ def test_a_party_or_a_generic_vehicle_is_the_road_user_its_words_name(
     text: str, named: list[tuple[str, int]]
 ) -> None:
     assert _named(text) == named
+
+
+@pytest.mark.parametrize(
+    ("text", "classes"),
+    [
+        # the claimant is the other party of a claim: a road user, named properly by the
+        # vehicle it rides or drives ...
+        (
+            "I pulled out to turn right, but the claimant was coming along the main road on "
+            "a scooter and we touched.",
+            ["Motorcycle"],
+        ),
+        ("My insured was waiting at the lights when the claimant drove into her.", ["Car"]),
+        # ... or by its own vehicle, which is the one road user
+        ("The claimant's horsebox clipped our insured's mirror.", ["Truck"]),
+        # ... and the claimant's account is no road user
+        ("Claimant's statement: she was parked when a taxi reversed into her.", ["Car"]),
+    ],
+)
+def test_the_claimant_is_one_road_user(text: str, classes: list[str]) -> None:
+    assert [m.cls.value for m in parse(text).others] == classes

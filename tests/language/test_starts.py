@@ -232,3 +232,90 @@ def test_the_one_that_blocks_the_view_is_not_the_adversary_even_when_the_model_s
         "The AV turned left; a pickup waiting opposite screened its view.", "a pickup"
     )
     assert alone.adversary is not None and alone.adversary.quote == "a pickup"
+
+
+@pytest.mark.parametrize(
+    ("text", "start", "detail"),
+    [
+        # a walker crossing along the ego's first bearing crosses the street it turns into:
+        # from the far corner when it comes toward the ego ...
+        (
+            "The AV was northbound on Pine Avenue and turned right to go eastbound on Elm "
+            "Street. A pedestrian crossing the eastbound lanes of Elm Street in the marked "
+            "crosswalk was walking south and was struck.",
+            "roadside_right",
+            "exit_far_corner",
+        ),
+        (
+            "V1 was westbound on 5th St turning right onto Oak Ave. A pedestrian in the "
+            "crosswalk walking east across Oak Ave was struck by V1.",
+            "roadside_right",
+            "exit_far_corner",
+        ),
+        (
+            "The AV was southbound and turned left. A cyclist crossing northbound in the "
+            "crosswalk was struck.",
+            "roadside_left",
+            "exit_far_corner",
+        ),
+        # ... from the near side when it goes the ego's way
+        (
+            "V1 was westbound on 5th St turning right onto Oak Ave. A pedestrian in the "
+            "crosswalk walking west across Oak Ave was struck by V1.",
+            "roadside_right",
+            "exit_crossing",
+        ),
+    ],
+)
+def test_a_walker_crossing_the_street_a_turning_ego_enters_by_compass(
+    text: str, start: str, detail: str
+) -> None:
+    facts = read_description(text).facts
+    assert facts["spawn_position"].value == start
+    assert facts["start_detail"].value == detail
+
+
+@pytest.mark.parametrize(
+    ("text", "start", "detail"),
+    [
+        # the side it hit, said after a semicolon, tells the lane it came up behind in
+        (
+            "At the crossroads the AV sat at the red light. A tipper lorry came up behind it; "
+            "scraped the AV's driver side rear and drove on.",
+            "adjacent_lane_left",
+            "from_behind",
+        ),
+        # closing in from behind an ego that changes lanes: in the lane the ego moves into
+        (
+            "The AV moved over to the left lane to pass a slow milk float, and a motorbike "
+            "came up fast from behind and clipped its rear.",
+            "adjacent_lane_left",
+            "from_behind",
+        ),
+    ],
+)
+def test_from_behind_in_the_lane_beside(text: str, start: str, detail: str) -> None:
+    facts = read_description(
+        text, adversary_quote="motorbike" if "motorbike" in text else None
+    ).facts
+    assert facts["spawn_position"].value == start
+    assert facts["start_detail"].value == detail
+
+
+def test_a_sentence_opening_phrase_is_the_words_of_the_subject_named_after_it() -> None:
+    facts = read_description("Ego at 50 kph. Ahead, in the same lane, a tractor has stopped.").facts
+    assert facts["spawn_position"].value == "ahead_same_lane"
+
+
+def test_a_standing_adversary_the_ego_goes_round_stands_in_its_lane() -> None:
+    turning = read_description(
+        "The AV turns right at the T-junction and has to go round a parked skip lorry "
+        "through the oncoming lane."
+    ).facts
+    assert turning["spawn_position"].value == "ahead_same_lane"
+    assert turning["start_detail"].value == "exit_lane"
+    straight = read_description(
+        "On the high street the ego steers around a stationary horsebox by using the oncoming lane."
+    ).facts
+    assert straight["spawn_position"].value == "ahead_same_lane"
+    assert "start_detail" not in straight

@@ -330,7 +330,10 @@ def _geometry_pool(
         tags = set(entry.tags) | set(entry.id.split(".")[-1].split("_"))
         if spec.road_type is RoadType.MERGE and (EGO_ON_RAMP_TAG in tags) != spec.ego_on_ramp:
             return False  # the ego on the ramp only when the text puts it there
-        if spec.ego_plan is EgoPlan.BYPASS:
+        if spec.ego_plan is EgoPlan.BYPASS and spec.ego_maneuver in (
+            EgoManeuver.GO_STRAIGHT,
+            EgoManeuver.CHANGE_LANE,
+        ):
             return True  # a bypass reads as a lane change, or as going straight past
         turns = {"left_turn", "right_turn", "unprotected_left_turn"}
         changes = EGO_LANE_CHANGE_TAG in tags

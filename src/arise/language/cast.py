@@ -368,6 +368,13 @@ def read_cast(text: str) -> Cast:
             continue
         if kind == "make" and _noun_follows(text, end):
             continue  # "a 2017 Hollis Tern pickup": the noun names it, with these words
+        if (
+            kind == "noun"
+            and word.lower().endswith("'s")
+            and _is_party_word(word)
+            and _noun_follows(text, end)
+        ):
+            continue  # "the claimant's pickup": the pickup is the party's road user
         if _DRIVER.match(word) and (_EGO_DRIVER.search(before) or _DRIVER_OF.match(after)):
             skipped.append(word)
             taken.append((start, end))
@@ -409,6 +416,7 @@ def read_cast(text: str) -> Cast:
             numbered[kind] = len(found) - 1
     found = _numbered_descriptions(text, found, numbered)
     found = _generic_descriptions(text, found)
+    found = _party_vehicles(text, found)
     found = _bracketed_descriptions(text, found)
     found = _heading_mentions(text, found)
     found = _ego_appositions(text, ego, found)
@@ -529,6 +537,28 @@ def _generic_descriptions(text: str, found: list[Mention]) -> list[Mention]:
         start, end = first.end + after.start(1), first.end + after.end(1)
         folded = _fold_described(found, mention, start, end, vehicles=True)
         found = folded if folded is not found else _fold_described(found, mention, start, end)
+    return found
+
+
+#: A party's vehicle, said after it in its clause: "the claimant was coming the other way
+#: on a motorcycle", "the third party, who was riding a moped": group 1 is the vehicle's phrase.
+_PARTY_VEHICLE = re.compile(
+    r"^[^.;:]{0,80}?\b(?:on|in|riding|driving|aboard)\s+(?:a|an|his|her|their)\s+([^,;.()]{1,60})",
+    re.I,
+)
+
+
+def _party_vehicles(text: str, found: list[Mention]) -> list[Mention]:
+    """A claim party named by its part ("the claimant") and then by the vehicle it rides or
+    drives in its clause: one road user, of that vehicle's class."""
+    for mention in list(found):
+        if mention not in found or not _is_party(mention):
+            continue
+        first = mention.spans[0]
+        after = _PARTY_VEHICLE.match(text[first.end :])
+        if after:
+            start, end = first.end + after.start(1), first.end + after.end(1)
+            found = _fold_described(found, mention, start, end, vehicles=True)
     return found
 
 
@@ -697,9 +727,10 @@ _POSSESSOR = re.compile(r"\b(?:their|his|her)\s+(?:[\w'-]+[- ]){0,2}$", re.I)
 
 
 def _is_party_word(words: str) -> bool:
-    """ "the third party", "the other party": a road user named by its part in the claim,
-    which an apposition or its vehicle ("their van") later names properly."""
-    return words.lower().endswith("party")
+    """ "the third party", "the other party", "the claimant": a road user named by its part
+    in the claim, which an apposition or its vehicle ("their van", "on a motorcycle") later
+    names properly."""
+    return words.lower().removesuffix("'s").endswith(("party", "claimant"))
 
 
 def _is_party(mention: Mention) -> bool:

@@ -107,7 +107,7 @@ _VERB_BEFORE = re.compile(
 
 _PREPOSITION = re.compile(
     r"^(?:of|in|into|to|from|behind|with|by|for|at|on|onto|toward|towards|past|beside|near|"
-    r"around|ahead|front|than|between|like|before|after|across|along|alongside|over|under|"
+    r"around|round|ahead|front|than|between|like|before|after|across|along|alongside|over|under|"
     r"through|off|against|follows|following|hits|hit|struck|strikes|strike|overtakes|passes|sees|"
     r"clips|clipped|rams|rammed|touches|touched|scrapes|scraped|sideswipes|sideswiped|bumps|bumped)$",
     re.I,

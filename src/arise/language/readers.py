@@ -145,6 +145,7 @@ def words_of(cast: Cast, mention: Mention) -> list[tuple[int, int]]:
         if clause.subject is mention:
             stretches.append((clause.start, phrase_start(text, mention.spans[0].start)))
     stretches += _opening_clauses(cast, mention)
+    stretches += _carried_past_semicolon(cast, mention, stretches)
     # "... when we pass, he starts suddenly and goes out": a clause opened by a pronoun that
     # stands for this actor is about it too.
     for clause in cast.clauses:
@@ -186,6 +187,27 @@ def words_of(cast: Cast, mention: Mention) -> list[tuple[int, int]]:
         ):
             stretches.append((clause.start, opened))
     return stretches
+
+
+def _carried_past_semicolon(
+    cast: Cast, mention: Mention, stretches: list[tuple[int, int]]
+) -> list[tuple[int, int]]:
+    """The clauses after a semicolon that go on about `mention` with no subject named
+    ("a pickup came up behind; struck the AV's right rear"): each one that starts right
+    where its words so far end."""
+    found: list[tuple[int, int]] = []
+    ends = [end for _, end in stretches]
+    for clause in cast.clauses:
+        if (
+            clause.subject is mention
+            and not clause.explicit
+            and not clause.inverted
+            and clause.opener == ";"
+            and any(0 <= clause.start - end <= 3 for end in ends)
+        ):
+            found.append((clause.start, clause.end))
+            ends.append(clause.end)
+    return found
 
 
 def _opening_clauses(cast: Cast, mention: Mention) -> list[tuple[int, int]]:
@@ -597,6 +619,7 @@ def read_position(
     )
     there = _from_there(cast, stretches)
     walker = mention.cls.is_walker or mention.is_prop
+    side_damage: list[tuple[int, int, RelativePosition, str]] = []  # across all stretches
     for start, end in stretches:
         # A rule's `unless` may see a little past the stretch ("from behind | a parked
         # van"); the cue itself must lie inside it. The first hit of each position counts.
@@ -644,6 +667,7 @@ def read_position(
             # kerb just round the corner").
             kerb = [c for c in cues if c[2] in _ROADSIDE.values()]
             cues = kerb or [c for c in cues if c[:2] in routed]
+        side_damage += [c for c in cues if c[:2] in damage and c[2] in _ADJACENT.values()]
         sided = [c for c in cues if c[2] in _SIDED]
         if sided and any(c[2] in _ALONG for c in cues):
             # "comes from behind in the left lane", "just ahead of me in the right-hand
@@ -684,6 +708,13 @@ def read_position(
                 else RelativePosition.ADJACENT_LANE_RIGHT
             )
             best = (target.start, -1, position, f"{lane_side.quote} ... {target.quote}")
+    # "came up behind the AV ...; struck its passenger-side rear": the side it hit tells
+    # the lane it came up in, from behind (not the road across, as side damage alone does)
+    from_behind = bool(
+        best is not None and best[2] in _ALONG and side_damage and best[:2] not in routed
+    )
+    if from_behind:
+        best = min(side_damage)
     best = best or fallback or there
     if by_another and best is not None and best[2] in _ALONG and _walks_or_rides(mention):
         # "steps out from in front of it and walks across the ego's path": the side of
@@ -714,6 +745,7 @@ def read_position(
     if (
         position in _ADJACENT.values()
         and (best[:2] in damage or _side_alone(mention, best[3]))
+        and not from_behind
         and _crosses_there(cast, mention)
     ):
         # "struck the AV on its driver's side", "a car on the ego's left at the four-way
@@ -724,6 +756,16 @@ def read_position(
         across = _straight_across_left_turn(cast, mention, stretches)
         if across is not None:
             return across
+    if (
+        position is RelativePosition.BEHIND_SAME_LANE
+        and not walker
+        and (changed_to := _ego_lane_change_side(cast)) is not None
+        and any(rulebook().first(Fact.CLOSES_FROM_BEHIND, cast.text, a, b) for a, b in stretches)
+    ):
+        # "the ego moved over to the right ... a motorcycle came up from behind": coming up
+        # fast behind an ego that changes lanes, it is in the lane the ego moves into
+        position = _ADJACENT[changed_to]
+        from_behind = True
     if mention.cls.is_walker and position in _ADJACENT.values():
         # A walker "from the passenger side", "in the lane on the right": no walker starts
         # in a traffic lane; it stands at that kerb, or comes off it across the road.
@@ -741,7 +783,13 @@ def read_position(
         value=position.value,
         source=FactSource.TEXT,
         quote=best[3],
-        detail=StartDetail.EXIT_LANE if exit_lane else None,
+        detail=(
+            StartDetail.EXIT_LANE
+            if exit_lane
+            else StartDetail.FROM_BEHIND
+            if from_behind and position in _ADJACENT.values()
+            else None
+        ),
     )
 
 
@@ -769,6 +817,25 @@ def _straight_across_left_turn(
         value=RelativePosition.ONCOMING.value,
         source=FactSource.TEXT,
         quote=straight.quote,
+    )
+
+
+@lru_cache(maxsize=16)
+def _ego_lane_change_side(cast: Cast) -> str | None:
+    """The side ("left", "right") of a lane change the text has the ego make, if any."""
+    book = rulebook()
+    if not any(
+        hit.value == "change_lane" and subject_of(cast, hit.start) == "ego"
+        for hit in book.hits(Fact.TURN, cast.text)
+    ):
+        return None
+    return next(
+        (
+            hit.value
+            for hit in book.hits(Fact.LANE_SIDE, cast.text)
+            if subject_of(cast, hit.start) == "ego"
+        ),
+        None,
     )
 
 
@@ -829,7 +896,13 @@ def _heading(text: str, start: int, end: int) -> Hit | None:
     return rulebook().first(Fact.HEADING, text, start, end)
 
 
-_STREET = r"[A-Z][a-z]+ (?:Avenue|Street|Road|Lane|Boulevard|Drive|Way|Place)"
+# A street's name: one or two capitalised words or an ordinal ("5th"), and the kind of
+# street, in full or as reports abbreviate it ("Oak Ave", "W 5th St").
+_STREET = (
+    r"(?:[A-Z][a-z]+ )?(?:[A-Z][a-z]+|\d+(?:st|nd|rd|th)) "
+    r"(?:Avenue|Street|Road|Lane|Boulevard|Drive|Way|Place|Parkway|Highway"
+    r"|Ave|St|Rd|Blvd|Dr|Ln|Pl|Pkwy|Hwy)\b"
+)
 _FROM_COMPASS = {"north": "south", "south": "north", "east": "west", "west": "east"}
 
 
@@ -849,10 +922,9 @@ def _side_road_bearing(text: str, words: str) -> tuple[int, str] | None:
     return (_COMPASS[told.group(1).lower()] + 180) % 360, told.group(0)
 
 
-def read_compass(cast: Cast, mention: Mention) -> GroundedFact | None:
-    """A side from compass words ("the AV was northbound; an eastbound car"), as crash
-    reports give them: the ego's bearing from its own words, the actor's from its words."""
-    ego_bearing = None
+def _ego_bearing(cast: Cast) -> int | None:
+    """The ego's compass bearing before any turn, from its own words ("the AV was
+    northbound"); None when they give none."""
     # up to the other's phrase: "the AV was hit by an eastbound sedan" is the sedan's bearing
     others = sorted(phrase_start(cast.text, s.start) for m in cast.others for s in m.spans)
     for span in cast.ego:
@@ -864,11 +936,22 @@ def read_compass(cast: Cast, mention: Mention) -> GroundedFact | None:
         if opener is not None and found is None:  # "Heading south on Pike Road, the AV ..."
             found = _heading(cast.text, *opener)
             if found:
-                ego_bearing = _COMPASS[found.value]
-                break
+                return _COMPASS[found.value]
         if found and not re.search(r"[.;]", cast.text[span.end : found.start]):
-            ego_bearing = _COMPASS[found.value]
-            break
+            return _COMPASS[found.value]
+    return None
+
+
+def _own_heading(cast: Cast, start: int, end: int) -> Hit | None:
+    """An actor's compass heading in its words, then with the few characters before ("an
+    eastbound sedan")."""
+    return _heading(cast.text, start, end) or _heading(cast.text, max(0, start - 15), end)
+
+
+def read_compass(cast: Cast, mention: Mention) -> GroundedFact | None:
+    """A side from compass words ("the AV was northbound; an eastbound car"), as crash
+    reports give them: the ego's bearing from its own words, the actor's from its words."""
+    ego_bearing = _ego_bearing(cast)
     if ego_bearing is None:
         return None
     for start, end in words_of(cast, mention):
@@ -889,8 +972,7 @@ def read_compass(cast: Cast, mention: Mention) -> GroundedFact | None:
                 name="spawn_position", value=side.value, source=FactSource.TEXT, quote=curb.quote
             )
         words = cast.text[max(0, start - 15) : end]
-        # its own words first, then with the few characters before ("an eastbound sedan")
-        bound = _heading(cast.text, start, end) or _heading(cast.text, max(0, start - 15), end)
+        bound = _own_heading(cast, start, end)
         heading = (
             (_COMPASS[bound.value], bound.quote) if bound else _side_road_bearing(cast.text, words)
         )
@@ -1066,7 +1148,9 @@ def read_maneuvers(reading: Reading) -> None:
         )
 
 
-_ONTO_STREET = re.compile(rf"\b(?:onto|into) ({_STREET})")
+_ONTO_STREET = re.compile(
+    rf"\b(?:onto|into|turn(?:s|ed|ing)? (?:left|right) on|to go (?:\w+ )?on) ({_STREET})"
+)
 
 
 def _exit_street_named(cast: Cast, words: str) -> str | None:
@@ -1116,6 +1200,7 @@ def read_start_detail(reading: Reading) -> None:
     walker = adversary.cls in (ActorClass.PEDESTRIAN, ActorClass.BICYCLE)
     book = rulebook()
     text = cast.text
+    ego_bearing = _ego_bearing(cast)
     for start, end in words_of(cast, adversary):
         words = text[start:end]
         if turn is not None and walker:
@@ -1124,13 +1209,32 @@ def read_start_detail(reading: Reading) -> None:
             quote = (
                 far.quote if far else street.quote if street else _exit_street_named(cast, words)
             )
+            # A walker crossing along the ego's first bearing crosses the street it turns
+            # into; one coming toward the ego ("walking south" of a northbound AV) starts
+            # from that crossing's far corner.
+            heading = _own_heading(cast, start, end) if ego_bearing is not None else None
+            along = (
+                (_COMPASS[heading.value] - ego_bearing) % 360
+                if heading is not None and ego_bearing is not None
+                else None
+            )
+            if along not in (0, 180):
+                heading = None
+            elif quote is None:
+                quote = heading.quote if heading else None
             if quote is not None and (far or book.first(Fact.CROSSES, text, start, end)):
-                detail = StartDetail.EXIT_FAR_CORNER if far else StartDetail.EXIT_CROSSING
+                toward = along == 180 and heading is not None
+                detail = StartDetail.EXIT_FAR_CORNER if far or toward else StartDetail.EXIT_CROSSING
                 reading.facts["start_detail"] = GroundedFact(
                     name="start_detail", value=detail.value, source=FactSource.TEXT, quote=quote
                 )
                 told = reading.facts.get("spawn_position")
-                if told is None or told.quote is None or told.quote.lower() in quote.lower():
+                if (
+                    told is None
+                    or told.quote is None
+                    or told.quote.lower() in quote.lower()
+                    or (heading is not None and told.quote == heading.quote)
+                ):
                     reading.facts["spawn_position"] = GroundedFact(
                         name="spawn_position",
                         value=turn.value,
@@ -1208,6 +1312,34 @@ def read_ego_plan(reading: Reading) -> None:
                 return
 
 
+def read_bypassed_start(reading: Reading) -> None:
+    """A standing adversary whose start no words give, that the ego goes round: it stands
+    ahead in the ego's lane, in the lane a turning ego enters ("turned left ... had to go
+    round a van on the other side of the road")."""
+    plan = reading.facts.get("ego_plan")
+    if (
+        reading.adversary is None
+        or plan is None
+        or plan.value != EgoPlan.BYPASS.value
+        or "spawn_position" in reading.facts
+        or "adversary_stationary" not in reading.facts
+    ):
+        return
+    reading.facts["spawn_position"] = StartFact(
+        name="spawn_position",
+        value=RelativePosition.AHEAD_SAME_LANE.value,
+        source=FactSource.TEXT,
+        quote=plan.quote,
+    )
+    if ego_turns(reading.cast):
+        reading.facts["start_detail"] = GroundedFact(
+            name="start_detail",
+            value=StartDetail.EXIT_LANE.value,
+            source=FactSource.TEXT,
+            quote=plan.quote,
+        )
+
+
 def read_overtake_past_oncoming(reading: Reading) -> None:
     """An ego that pulls out to the left while another road user comes the other way
     overtakes through that road user's lane, on a two-way road: a bypass, unless other words
@@ -1273,7 +1405,14 @@ def read_stationary(cast: Cast, mention: Mention) -> GroundedFact | None:
         return None  # "parked at the side ... he starts suddenly": its own verbs move it
     for start, end in stretches:
         still = rulebook().first(Fact.STATIONARY, cast.text, start, end)
-        if still is not None and not moves(cast.text, start, end):
+        # a verb of the ego's or another's in these words moves them, not this one ("a van
+        # parked in its lane, so the ego swung out")
+        moved = any(
+            not isinstance(subject_of(cast, hit.start), Mention)
+            and subject_of(cast, hit.start) != "ego"
+            for hit in rulebook().hits(Fact.MOVING, cast.text, start, end)
+        )
+        if still is not None and not moved:
             return GroundedFact(
                 name="adversary_stationary", value="true", source=FactSource.TEXT, quote=still.quote
             )
@@ -1412,6 +1551,7 @@ def read_description(description: str, adversary_quote: str | None = None) -> Re
     read_start_detail(reading)
     read_ego_stopped(reading)
     read_ego_plan(reading)
+    read_bypassed_start(reading)
     read_overtake_past_oncoming(reading)
     read_ego_on_ramp(reading)
     read_road(reading)

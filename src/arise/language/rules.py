@@ -80,6 +80,9 @@ class Fact(StrEnum):
     EGO_OVERTAKES = "ego_overtakes"  # the ego overtakes (a lane change to the left)
     THROUGH_ONCOMING = "through_oncoming"  # around it through the oncoming lane (a bypass)
     FROM_BEHIND = "from_behind"  # the actor comes up from behind (StartDetail.FROM_BEHIND)
+    # the actor closes in from behind (not "following", "tailgating"): beside an ego that
+    # changes lanes, it is in the lane the ego moves into
+    CLOSES_FROM_BEHIND = "closes_from_behind"
     AHEAD_OF_EGO = "ahead_of_ego"  # the actor ends up ahead of the ego (StartDetail.AHEAD)
     EXIT_STREET = "exit_street"  # the street (or its crossing) a turning ego enters
     FAR_CORNER = "far_corner"  # the far corner of that street's crossing
@@ -283,6 +286,7 @@ def _values(fact: Fact) -> frozenset[str] | None:
                 Fact.EGO_OVERTAKES,
                 Fact.THROUGH_ONCOMING,
                 Fact.FROM_BEHIND,
+                Fact.CLOSES_FROM_BEHIND,
                 Fact.AHEAD_OF_EGO,
                 Fact.EXIT_STREET,
                 Fact.FAR_CORNER,
