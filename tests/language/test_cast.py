@@ -266,6 +266,11 @@ def test_a_party_or_a_generic_vehicle_is_the_road_user_its_words_name(
         ("The claimant's horsebox clipped our insured's mirror.", ["Truck"]),
         # ... and the claimant's account is no road user
         ("Claimant's statement: she was parked when a taxi reversed into her.", ["Car"]),
+        # one that runs into the back of the ego is no walker named before it
+        (
+            "Our insured braked for a boy on the zebra and the claimant hit her rear bumper.",
+            ["Pedestrian", "Car"],
+        ),
     ],
 )
 def test_the_claimant_is_one_road_user(text: str, classes: list[str]) -> None:

@@ -201,21 +201,33 @@ def test_a_vehicle_that_waits_on_the_street_the_ego_turns_onto_is_in_its_lane() 
     ("text", "start"),
     [
         # a vehicle going straight on, its side unsaid, as the ego turns left: it comes
-        # the other way (the left turn across the path of oncoming traffic)
+        # the other way (the left turn across the path of oncoming traffic) ...
         ("Unit 1 turned left on the green. Unit 2, a tanker, continued straight.", "oncoming"),
         (
             "The AV was turning left when a hatchback going straight on hit its right side.",
             "oncoming",
         ),
-        # ... not while the ego turns right, and not with a side said
-        ("Unit 1 turned right on the green. Unit 2, a tanker, continued straight.", None),
+        # ... as it turns right, from the left (the right turn into traffic from the left)
+        (
+            "Unit 1 turned right on the green. Unit 2, a tanker, continued straight.",
+            "crossing_road_from_left",
+        ),
+        (
+            "The AV was turning right when a hatchback going straight on hit its left side.",
+            "crossing_road_from_left",
+        ),
+        # ... not one that hit the other side, and not with a side said
+        (
+            "The AV was turning right when a hatchback going straight on hit its right side.",
+            "adjacent_lane_right",
+        ),
         (
             "The AV was turning left when a hatchback from the right going straight on hit it.",
             "crossing_road_from_right",
         ),
     ],
 )
-def test_straight_on_across_a_left_turn_is_oncoming(text: str, start: str | None) -> None:
+def test_straight_on_through_the_egos_turn(text: str, start: str | None) -> None:
     fact = read_description(text).facts.get("spawn_position")
     assert (fact.value if fact else None) == start
 
@@ -319,3 +331,15 @@ def test_a_standing_adversary_the_ego_goes_round_stands_in_its_lane() -> None:
     ).facts
     assert straight["spawn_position"].value == "ahead_same_lane"
     assert "start_detail" not in straight
+
+
+@pytest.mark.parametrize(
+    "text",
+    [
+        "At the crossroads the AV kept straight on. From the right a pickup jumped the lights.",
+        "At the crossroads the AV kept straight on. Crossing from the right was a pickup.",
+        "At the crossroads the AV kept straight on. From the right came a pickup at speed.",
+    ],
+)
+def test_where_the_subject_comes_from_said_before_it(text: str) -> None:
+    assert read_description(text).facts["spawn_position"].value == "crossing_road_from_right"

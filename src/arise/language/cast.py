@@ -680,8 +680,18 @@ def _same_thing(
 ) -> Mention | None:
     """An earlier mention this one refers back to ("the van", "the other vehicle")."""
     if _is_party_word(word) and _DEFINITE.search(before):
-        # "the third party" after a road user is named: that one, whatever it is
-        return next((m for m in reversed(found) if not m.cls.is_place and not m.is_prop), None)
+        # "the third party" after a road user is named: that one, whatever it is; but one
+        # that runs into the back of the ego is a vehicle, not a walker named before
+        # ("stopped for a pedestrian ... the claimant ran into the back of us")
+        drives = _RUNS_INTO_THE_BACK.match(after) is not None
+        return next(
+            (
+                m
+                for m in reversed(found)
+                if not m.cls.is_place and not m.is_prop and (m.cls.is_vehicle or not drives)
+            ),
+            None,
+        )
     if _POSSESSOR.search(before):
         party = next((m for m in reversed(found) if _is_party(m)), None)
         if party is not None and cls.is_vehicle:
@@ -718,6 +728,14 @@ def _same_thing(
             return earlier
     return None
 
+
+#: Words after a claim party that make it a vehicle behind the ego: "the claimant ran
+#: into the back of us", "the third party rear-ended my car".
+_RUNS_INTO_THE_BACK = re.compile(
+    r"^[^.;]{0,60}?\b(?:rear-ended|rear ended|rear-ends|(?:into|hit|hits|struck|strikes|"
+    r"bumped|clipped|tapped|touched|impacted)\b[^.;]{0,30}?\b(?:back|rear)\b)",
+    re.I,
+)
 
 #: "both cars", "the two vehicles": the ego and the other, named before.
 _BOTH = re.compile(r"\b(?:both|two)\s+(?:[\w'-]+\s+)?$", re.I)

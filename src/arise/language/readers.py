@@ -181,9 +181,10 @@ def words_of(cast: Cast, mention: Mention) -> list[tuple[int, int]]:
         opened = phrase_start(text, named[0])
         fronted = text[clause.start : opened]
         if (
-            _FRONTED_PLACE.match(fronted)
+            (_FRONTED_PLACE.match(fronted) or _FRONTED_ORIGIN.match(fronted))
             and len(fronted.split()) <= 8
             and not any(clause.start <= s.start < opened for m in cast.others for s in m.spans)
+            and not any(clause.start <= s.start < opened for s in cast.ego)
         ):
             stretches.append((clause.start, opened))
     return stretches
@@ -251,6 +252,15 @@ _FRONTED_PLACE = re.compile(
     r"\s*(?:and\s+)?(?:just\s+|right\s+|shortly\s+|further\s+|up\s+|then\s+)?(?:ahead\s+)?"
     r"(?:on|in|at|to|off|beside|alongside|across|after|past|round|around)\s"
     r"(?![^,]*\b\w+(?:ing|ed|s)\b)[^,]*$",
+    re.I,
+)
+
+
+#: Where the subject comes from, said before it ("From the left a car ran the red",
+#: "Crossing from the left was a van"): verbs may follow, since the origin opens the clause.
+_FRONTED_ORIGIN = re.compile(
+    r"\s*(?:and\s+)?(?:(?:coming|approaching|crossing|travell?ing|heading|driving|moving|"
+    r"riding|emerging|appearing)\s+)?from\s[^,]*$",
     re.I,
 )
 
@@ -736,7 +746,7 @@ def read_position(
             (
                 _by_another(cast, mention)
                 or _ego_verb_before(cast, mention, Fact.EGO_PASSES)
-                or _straight_across_left_turn(cast, mention, stretches)
+                or _straight_through_the_turn(cast, mention, stretches)
             )
             if by_another
             else None
@@ -753,7 +763,7 @@ def read_position(
         position = _CROSSING[_SIDE_OF[position]]
     elif position in _ADJACENT.values() and best[:2] in damage:
         # "V2 went straight through and struck V1's passenger side" as V1 turned left
-        across = _straight_across_left_turn(cast, mention, stretches)
+        across = _straight_through_the_turn(cast, mention, stretches, position)
         if across is not None:
             return across
     if (
@@ -793,13 +803,30 @@ def read_position(
     )
 
 
-def _straight_across_left_turn(
-    cast: Cast, mention: Mention, stretches: list[tuple[int, int]]
+#: Where a vehicle that goes straight on, its side unsaid, comes from while the ego turns:
+#: a left turn crosses the traffic coming the other way, a right turn joins the traffic
+#: from the left (the conflicts of right-hand traffic); and the side of the ego it hits.
+_THROUGH_THE_TURN: dict[str, tuple[RelativePosition, RelativePosition]] = {
+    "turn_left": (RelativePosition.ONCOMING, RelativePosition.ADJACENT_LANE_RIGHT),
+    "turn_right": (RelativePosition.CROSSING_FROM_LEFT, RelativePosition.ADJACENT_LANE_LEFT),
+}
+
+
+def _straight_through_the_turn(
+    cast: Cast,
+    mention: Mention,
+    stretches: list[tuple[int, int]],
+    hit_side: RelativePosition | None = None,
 ) -> GroundedFact | None:
-    """A vehicle that goes straight on, its side unsaid, while the ego turns left: the
-    traffic a left turn crosses comes the other way ("V1 turned left; V2, a motorcycle,
-    proceeded straight")."""
-    if mention.cls.is_walker or mention.is_prop or ego_turns(cast) != {"turn_left"}:
+    """A vehicle that goes straight on, its side unsaid, while the ego turns ("V1 turned
+    left; V2, a motorcycle, proceeded straight"): from where that turn meets traffic
+    (`_THROUGH_THE_TURN`); with the side of the ego it hit (`hit_side`), only when that is
+    the side such a vehicle hits."""
+    turns = ego_turns(cast)
+    if mention.cls.is_walker or mention.is_prop or len(turns) != 1:
+        return None
+    start, struck = _THROUGH_THE_TURN[next(iter(turns))]
+    if hit_side is not None and hit_side is not struck:
         return None
     straight = next(
         (
@@ -813,10 +840,7 @@ def _straight_across_left_turn(
     if straight is None:
         return None
     return GroundedFact(
-        name="spawn_position",
-        value=RelativePosition.ONCOMING.value,
-        source=FactSource.TEXT,
-        quote=straight.quote,
+        name="spawn_position", value=start.value, source=FactSource.TEXT, quote=straight.quote
     )
 
 
