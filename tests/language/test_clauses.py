@@ -93,6 +93,14 @@ def _subject_of(text: str, words: str) -> str | None:
         # after it is its object; a word that opens an actor's name is no participle
         ("Overtaking a milk float on the hill, the AV meets a van.", "Overtaking", "ego"),
         ("oncoming hatchback goes straight, the ego waits.", "goes straight", "oncoming hatchback"),
+        # "which then": still the one before the relative word
+        (
+            "The AV is tailed by a horsebox, which then swings into the right lane.",
+            "swings",
+            "a horsebox",
+        ),
+        # a sentence's opening phrases are the subject's named after them
+        ("Ahead, on the bridge, a tractor has stopped.", "on the bridge", "a tractor"),
     ],
 )
 def test_each_verb_has_the_subject_of_its_clause(text: str, words: str, subject: str) -> None:

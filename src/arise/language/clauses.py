@@ -243,12 +243,19 @@ def read_clauses(cast: Cast) -> list[Clause]:
     cuts.sort()
     clauses: list[Clause] = []
     sentence = 0  # where the current sentence starts
+    relative: tuple[str, int] | None = None  # "which" right before "then": still relative
     for index, (_, begin, opener) in enumerate(cuts):
         end = cuts[index + 1][0] if index + 1 < len(cuts) else len(text)
         if opener in _SENTENCE_END or opener in ("", ":"):
             sentence = begin
         if not text[begin:end].strip():
+            relative = (opener, cuts[index][0]) if opener in _RELATIVE else None
             continue
+        # "a semi, which then swings left": the clause after "then" is the relative one
+        cut_at = cuts[index][0]
+        if relative is not None and opener in ("then", "and then"):
+            opener, cut_at = relative
+        relative = None
         subject: Actor | None
         instruction = _imperative(text, begin, end) and opener not in _RELATIVE
         if instruction and (
@@ -258,9 +265,7 @@ def read_clauses(cast: Cast) -> list[Clause]:
         elif instruction:
             subject = None  # "... and overtake the tractor": the tractor is its object
         elif opener in _RELATIVE or opener == "~participle":
-            subject = _actor_ending_at(
-                spans, text, cuts[index][0] if opener != "~participle" else begin
-            )
+            subject = _actor_ending_at(spans, text, cut_at if opener != "~participle" else begin)
             if subject is None and opener != "~participle":
                 subject = _opening_actor(cast, spans, begin, end)
         elif _participle_opening(cast, begin, cuts[index + 1] if index + 1 < len(cuts) else None):
