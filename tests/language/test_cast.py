@@ -264,6 +264,12 @@ def test_a_party_or_a_generic_vehicle_is_the_road_user_its_words_name(
         ("My insured was waiting at the lights when the claimant drove into her.", ["Car"]),
         # ... or by its own vehicle, which is the one road user
         ("The claimant's horsebox clipped our insured's mirror.", ["Truck"]),
+        # ... also with its make and model, and named again with no article
+        (
+            "The claimant's 2016 Hollis Tern pickup clipped our mirror. Claimant says the "
+            "lane was clear.",
+            ["Truck"],
+        ),
         # ... and the claimant's account is no road user
         ("Claimant's statement: she was parked when a taxi reversed into her.", ["Car"]),
         # one that runs into the back of the ego is no walker named before it
@@ -275,3 +281,9 @@ def test_a_party_or_a_generic_vehicle_is_the_road_user_its_words_name(
 )
 def test_the_claimant_is_one_road_user(text: str, classes: list[str]) -> None:
     assert [m.cls.value for m in parse(text).others] == classes
+
+
+def test_a_noun_phrase_reaches_back_over_a_year_and_a_made_up_make() -> None:
+    text = "The AV was westbound. A northbound 2019 Hollis Tern sedan ran the red light."
+    [sedan] = parse(text).others
+    assert sedan.quote == "A northbound 2019 Hollis Tern sedan"

@@ -372,9 +372,9 @@ def read_cast(text: str) -> Cast:
             kind == "noun"
             and word.lower().endswith("'s")
             and _is_party_word(word)
-            and _noun_follows(text, end)
+            and _noun_follows(text, end, words=4)
         ):
-            continue  # "the claimant's pickup": the pickup is the party's road user
+            continue  # "the claimant's 2018 Hollis pickup": the pickup is the party's
         if _DRIVER.match(word) and (_EGO_DRIVER.search(before) or _DRIVER_OF.match(after)):
             skipped.append(word)
             taken.append((start, end))
@@ -483,10 +483,10 @@ def _named_makes(text: str) -> list[tuple[int, int, ActorClass, str]]:
     return found
 
 
-def _noun_follows(text: str, end: int) -> bool:
-    """A class noun within two words after `end`."""
-    rest = text[end : end + 30]
-    head = re.match(r"^(?:\s+[\w-]+){0,2}", rest)
+def _noun_follows(text: str, end: int, words: int = 2) -> bool:
+    """A class noun within `words` words after `end`."""
+    rest = text[end : end + 15 * words]
+    head = re.match(rf"^(?:\s+[\w-]+){{0,{words}}}", rest)
     window = rest[: head.end()] if head else ""
     return bool(lexicon().noun_pattern.search(window))
 
@@ -679,7 +679,9 @@ def _same_thing(
     after: str = "",
 ) -> Mention | None:
     """An earlier mention this one refers back to ("the van", "the other vehicle")."""
-    if _is_party_word(word) and _DEFINITE.search(before):
+    if _is_party_word(word) and (
+        _DEFINITE.search(before) or (_BARE_PARTY.match(word) and not _NEW.search(before))
+    ):
         # "the third party" after a road user is named: that one, whatever it is; but one
         # that runs into the back of the ego is a vehicle, not a walker named before
         # ("stopped for a pedestrian ... the claimant ran into the back of us")
@@ -728,6 +730,9 @@ def _same_thing(
             return earlier
     return None
 
+
+#: A claim party named with no article, as claim notes write it ("Claimant states ...").
+_BARE_PARTY = re.compile(r"claimant(?:'s)?$", re.I)
 
 #: Words after a claim party that make it a vehicle behind the ego: "the claimant ran
 #: into the back of us", "the third party rear-ended my car".
@@ -796,11 +801,12 @@ _PHRASE_STOP = re.compile(
 
 def phrase_start(text: str, start: int) -> int:
     """Where the noun phrase of the noun at `start` begins: the nearest article or number
-    at most three words before it ("a parked delivery van"), else the noun itself."""
+    at most four words before it ("a parked delivery van", "a northbound 2019 Hollis Tern
+    sedan"), else the noun itself."""
     if _NO_ARTICLE.match(text, start):
         return start
-    before = text[max(0, start - 40) : start]
-    words = list(re.finditer(r"[\w'-]+", before))[-4:]
+    before = text[max(0, start - 48) : start]
+    words = list(re.finditer(r"[\w'-]+", before))[-5:]
     for word in reversed(words):
         if re.search(r"[.;,!?]", before[word.end() :]) or _PHRASE_STOP.match(word.group(0)):
             break  # the phrase does not reach across punctuation or a joining word
@@ -809,13 +815,13 @@ def phrase_start(text: str, start: int) -> int:
             and not before[: word.start()].endswith("#")  # "#2 lane" is a lane's number
             and not _MEASURED.match(before, word.end())  # "2 m short of ped" is a distance
         ):
-            return max(0, start - 40) + word.start()
+            return max(0, start - 48) + word.start()
     # No article: the modifiers right before the noun ("oncoming moto"), if any.
     opened = start
     modifiers = _bare_modifiers()
     for word in reversed(words[-2:]):
-        gap = text[max(0, start - 40) + word.end() : opened]
+        gap = text[max(0, start - 48) + word.end() : opened]
         if word.group(0).lower() not in modifiers or re.search(r"[.;,!?()]", gap):
             break
-        opened = max(0, start - 40) + word.start()
+        opened = max(0, start - 48) + word.start()
     return opened
