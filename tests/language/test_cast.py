@@ -287,3 +287,19 @@ def test_a_noun_phrase_reaches_back_over_a_year_and_a_made_up_make() -> None:
     text = "The AV was westbound. A northbound 2019 Hollis Tern sedan ran the red light."
     [sedan] = parse(text).others
     assert sedan.quote == "A northbound 2019 Hollis Tern sedan"
+
+
+@pytest.mark.parametrize(
+    ("text", "classes"),
+    [
+        # a crossing, an island or a phase named by its walkers is a place
+        ("The ego slows for the pedestrian crossing as a minicab pulls out.", ["Car"]),
+        ("The AV waits by the pedestrian refuge while a tanker turns.", ["Truck"]),
+        ("ped phase on, oncoming hatchback turns left across the AV", ["Car"]),
+        # ... but a walker crossing is a walker
+        ("The ego saw a pedestrian crossing the road.", ["Pedestrian"]),
+        ("The van stopped for the pedestrian crossing in front of it.", ["Van", "Pedestrian"]),
+    ],
+)
+def test_a_crossing_named_by_its_walkers_is_a_place(text: str, classes: list[str]) -> None:
+    assert [m.cls.value for m in parse(text).others] == classes

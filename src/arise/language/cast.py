@@ -355,6 +355,12 @@ def read_cast(text: str) -> Cast:
             continue
         if kind == "noun" and _qualified(text[:start], lex.not_an_actor_after):
             continue  # "the junction box" is no box
+        if (
+            kind == "noun"
+            and cls is ActorClass.PEDESTRIAN
+            and _crossing_as_a_place(text[max(0, start - 40) : start], after)
+        ):
+            continue
         word = text[start:end]
         before = text[max(0, start - 40) : start]
         if kind.startswith(("V", "P")) and kind != "noun" and kind in numbered:
@@ -438,6 +444,24 @@ def _not_an_actor(after: str, words: tuple[str, ...]) -> bool:
     """ "bike lane", "car park", "the driver's door": the noun qualifies another word."""
     found = re.match(r"^(?:'s)?[\s-]+([\w-]+)", after)
     return bool(found and found.group(1).lower() in words)
+
+
+#: "at the pedestrian crossing", "for the ped crossing": a crossing as a place (not "a
+#: pedestrian crossing the road"), said after a place word and an article.
+_CROSSING_PLACE_BEFORE = re.compile(
+    r"\b(?:at|to|for|near|on|onto|over|past|before|approaching|toward|towards|into|by|"
+    r"from|beyond|after)\s+(?:the|a|an)\s+$",
+    re.I,
+)
+_CROSSING_PLACE_AFTER = re.compile(
+    r"^\s+crossing\b(?!\s+(?:the|a|an|from|in front|towards?)\b)", re.I
+)
+
+
+def _crossing_as_a_place(before: str, after: str) -> bool:
+    """Whether a walker's noun names a crossing, a place ("stopped at the pedestrian
+    crossing"), not a walker crossing ("a pedestrian crossing the road")."""
+    return bool(_CROSSING_PLACE_BEFORE.search(before) and _CROSSING_PLACE_AFTER.match(after))
 
 
 def _is_plural(word: str, cls: ActorClass) -> bool:
