@@ -268,6 +268,28 @@ def test_a_counted_prop_is_placed_as_many_times_as_the_text_counts(
     assert [e.id for e in found.chosen[Component.MISC]] == [entry]
 
 
+@pytest.mark.parametrize(
+    ("text", "entry"),
+    [
+        (
+            "A steel plate lies in the ego's lane as a van comes the other way.",
+            "misc.plate_in_lane_ahead",
+        ),
+        (
+            "Turning left, the ego meets a road plate just past the corner as a van comes the "
+            "other way.",
+            "misc.plate_in_exit_lane",
+        ),
+    ],
+)
+def test_a_road_plate_is_placed_where_the_text_puts_it(
+    kb: KnowledgeBase, maps: dict[str, frozenset[str]], text: str, entry: str
+) -> None:
+    spec, found = retrieved(kb, maps, text, "a van")
+    assert [a.scenic_class.value for a in spec.actors] == ["IronPlate"]
+    assert [e.id for e in found.chosen[Component.MISC]] == [entry]
+
+
 def test_no_misc_entry_puts_an_actor_where_the_text_does_not(
     kb: KnowledgeBase, maps: dict[str, frozenset[str]]
 ) -> None:
