@@ -262,6 +262,8 @@ def test_a_party_or_a_generic_vehicle_is_the_road_user_its_words_name(
             ["Motorcycle"],
         ),
         ("My insured was waiting at the lights when the claimant drove into her.", ["Car"]),
+        # ... but not by a vehicle further on in the clause
+        ("The claimant was in a hurry and hit a parked van.", ["Car", "Van"]),
         # ... or by its own vehicle, which is the one road user
         ("The claimant's horsebox clipped our insured's mirror.", ["Truck"]),
         # ... also with its make and model, and named again with no article

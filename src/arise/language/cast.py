@@ -567,7 +567,8 @@ def _generic_descriptions(text: str, found: list[Mention]) -> list[Mention]:
 #: A party's vehicle, said after it in its clause: "the claimant was coming the other way
 #: on a motorcycle", "the third party, who was riding a moped": group 1 is the vehicle's phrase.
 _PARTY_VEHICLE = re.compile(
-    r"^[^.;:]{0,80}?\b(?:on|in|riding|driving|aboard)\s+(?:a|an|his|her|their)\s+([^,;.()]{1,60})",
+    r"^[^.;:]{0,80}?\b(?:on|in|riding|driving|aboard)\s+(?:a|an|his|her|their)\s+"
+    r"((?:[\w'-]+\s+){0,3}[\w'-]+)",
     re.I,
 )
 

@@ -1339,7 +1339,7 @@ def read_ego_plan(reading: Reading) -> None:
 def read_bypassed_start(reading: Reading) -> None:
     """A standing adversary whose start no words give, that the ego goes round: it stands
     ahead in the ego's lane, in the lane a turning ego enters ("turned left ... had to go
-    round a van on the other side of the road")."""
+    round a parked van through the oncoming lane")."""
     plan = reading.facts.get("ego_plan")
     if (
         reading.adversary is None
