@@ -811,7 +811,7 @@ def _across_from_adversary(actor: Actor, adversary: RelativePosition | None) -> 
     return mine is not None and theirs is not None and mine != theirs
 
 
-def _own_spawn(actor: Actor, adversary: RelativePosition | None = None) -> bool:
+def _own_spawn(actor: Actor, adversary: RelativePosition | None) -> bool:
     """Whether the actor is a road user placed by a spawn of its own (not a misc entry;
     the others of a counted adversary take copies of the adversary's). An occluder is a
     misc entry by the `adversary`'s start, unless the text puts it on the road or across

@@ -355,14 +355,10 @@ def read_cast(text: str) -> Cast:
             continue
         if kind == "noun" and _qualified(text[:start], lex.not_an_actor_after):
             continue  # "the junction box" is no box
-        if (
-            kind == "noun"
-            and cls is ActorClass.PEDESTRIAN
-            and _crossing_as_a_place(text[max(0, start - 40) : start], after)
-        ):
-            continue
         word = text[start:end]
         before = text[max(0, start - 40) : start]
+        if kind == "noun" and cls is ActorClass.PEDESTRIAN and _crossing_as_a_place(before, after):
+            continue
         if kind.startswith(("V", "P")) and kind != "noun" and kind in numbered:
             index = numbered[kind]
             found[index] = found[index].with_span(Span(start, end))
@@ -824,13 +820,18 @@ _PHRASE_STOP = re.compile(
 )
 
 
+#: How far back (characters) a noun phrase may begin before its noun.
+_PHRASE_REACH = 48
+
+
 def phrase_start(text: str, start: int) -> int:
     """Where the noun phrase of the noun at `start` begins: the nearest article or number
     at most four words before it ("a parked delivery van", "a northbound 2019 Hollis Tern
     sedan"), else the noun itself."""
     if _NO_ARTICLE.match(text, start):
         return start
-    before = text[max(0, start - 48) : start]
+    reach = max(0, start - _PHRASE_REACH)
+    before = text[reach:start]
     words = list(re.finditer(r"[\w'-]+", before))[-5:]
     for word in reversed(words):
         if re.search(r"[.;,!?]", before[word.end() :]) or _PHRASE_STOP.match(word.group(0)):
@@ -840,13 +841,13 @@ def phrase_start(text: str, start: int) -> int:
             and not before[: word.start()].endswith("#")  # "#2 lane" is a lane's number
             and not _MEASURED.match(before, word.end())  # "2 m short of ped" is a distance
         ):
-            return max(0, start - 48) + word.start()
+            return reach + word.start()
     # No article: the modifiers right before the noun ("oncoming moto"), if any.
     opened = start
     modifiers = _bare_modifiers()
     for word in reversed(words[-2:]):
-        gap = text[max(0, start - 48) + word.end() : opened]
+        gap = text[reach + word.end() : opened]
         if word.group(0).lower() not in modifiers or re.search(r"[.;,!?()]", gap):
             break
-        opened = max(0, start - 48) + word.start()
+        opened = reach + word.start()
     return opened

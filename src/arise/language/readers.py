@@ -847,16 +847,21 @@ def _straight_through_the_turn(
 @lru_cache(maxsize=16)
 def _ego_lane_change_side(cast: Cast) -> str | None:
     """The side ("left", "right") of a lane change the text has the ego make, if any."""
-    book = rulebook()
     if not any(
         hit.value == "change_lane" and subject_of(cast, hit.start) == "ego"
-        for hit in book.hits(Fact.TURN, cast.text)
+        for hit in rulebook().hits(Fact.TURN, cast.text)
     ):
         return None
+    side = _ego_lane_side_hit(cast)
+    return side.value if side is not None else None
+
+
+def _ego_lane_side_hit(cast: Cast) -> Hit | None:
+    """The first words that give the side of a lane change whose subject is the ego."""
     return next(
         (
-            hit.value
-            for hit in book.hits(Fact.LANE_SIDE, cast.text)
+            hit
+            for hit in rulebook().hits(Fact.LANE_SIDE, cast.text)
             if subject_of(cast, hit.start) == "ego"
         ),
         None,
@@ -1151,13 +1156,9 @@ def read_maneuvers(reading: Reading) -> None:
             name="ego_maneuver", value=ego[0].value, source=FactSource.TEXT, quote=ego[1]
         )
     if ego is not None and ego[0] is EgoManeuver.CHANGE_LANE:
-        side = _numbered_lane_change(cast, ego[1]) or next(
-            (
-                (hit.value, hit.quote)
-                for hit in rulebook().hits(Fact.LANE_SIDE, cast.text)
-                if subject_of(cast, hit.start) == "ego"
-            ),
-            None,
+        said = _ego_lane_side_hit(cast)
+        side = _numbered_lane_change(cast, ego[1]) or (
+            (said.value, said.quote) if said is not None else None
         )
         if side is not None:
             reading.facts["ego_lane_side"] = GroundedFact(
@@ -1430,10 +1431,9 @@ def read_stationary(cast: Cast, mention: Mention) -> GroundedFact | None:
     for start, end in stretches:
         still = rulebook().first(Fact.STATIONARY, cast.text, start, end)
         # a verb of the ego's or another's in these words moves them, not this one ("a van
-        # parked in its lane, so the ego swung out")
+        # parked in its lane, so the ego swung out"); its own verbs were handled above
         moved = any(
-            not isinstance(subject_of(cast, hit.start), Mention)
-            and subject_of(cast, hit.start) != "ego"
+            subject_of(cast, hit.start) is None
             for hit in rulebook().hits(Fact.MOVING, cast.text, start, end)
         )
         if still is not None and not moved:
