@@ -95,6 +95,8 @@ class DevSet(StrEnum):
     FRESH3 = "fresh3"
     # a fourth probe, written 2026-11-29 and first scored on a change it was not written for
     FRESH4 = "fresh4"
+    # a fifth probe, written 2026-11-29, five per paper category, first scored by the lead
+    FRESH5 = "fresh5"
     # placement probes of our own: two roles, parked and stalled, lanes beside the ego
     PLACEMENT = "placement"
     # tests/heldapart: measured only, never tuned on (its README states the rule)

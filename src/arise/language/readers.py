@@ -10,6 +10,7 @@ from __future__ import annotations
 import re
 from dataclasses import dataclass, field
 from functools import lru_cache
+from typing import NamedTuple
 
 from arise.language.cast import (
     VEHICLE_CLASSES,
@@ -578,9 +579,32 @@ def _by_another(cast: Cast, mention: Mention) -> GroundedFact | None:
     return None
 
 
-def _from_there(
-    cast: Cast, stretches: list[tuple[int, int]]
-) -> tuple[int, int, RelativePosition, str] | None:
+class _Cue(NamedTuple):
+    """A start some words give: where they are and the rule's order (the earliest wins),
+    the position they say and the words themselves."""
+
+    at: int
+    order: int
+    position: RelativePosition
+    quote: str
+
+    @property
+    def rank(self) -> tuple[int, int]:
+        return (self.at, self.order)
+
+
+@dataclass
+class _PositionCues:
+    """What the words about one actor say of its start, gathered over all its stretches."""
+
+    best: _Cue | None = None
+    fallback: _Cue | None = None  # from a weak rule
+    damage: set[tuple[int, int]] = field(default_factory=set)  # from where the ego was touched
+    routed: set[tuple[int, int]] = field(default_factory=set)  # on the road a turning ego enters
+    side_damage: list[_Cue] = field(default_factory=list)  # a side of the ego that was hit
+
+
+def _from_there(cast: Cast, stretches: list[tuple[int, int]]) -> _Cue | None:
     """ "from there" in the actor's words (`stretches`): the place named last before it
     ("keep an eye on the far pavement: a child may dart out from there")."""
     for start, end in stretches:
@@ -596,7 +620,7 @@ def _from_there(
         if places:
             place = max(places, key=lambda hit: hit.start)
             quote = f"{place.quote} ... {there.quote}"
-            return (place.start, place.order, RelativePosition(place.value), quote)
+            return _Cue(place.start, place.order, RelativePosition(place.value), quote)
     return None
 
 
@@ -618,154 +642,42 @@ def read_position(
     )
     if told is not None:
         return told
-    best: tuple[int, int, RelativePosition, str] | None = None
-    fallback: tuple[int, int, RelativePosition, str] | None = None  # from a weak rule
-    damage: set[tuple[int, int]] = set()  # the cues read from where the ego was touched
-    routed: set[tuple[int, int]] = set()  # the cues on the road a turning ego enters
     stretches = words_of(cast, mention)
-    side_said = next(
-        (hit for a, b in stretches if (hit := rulebook().first(Fact.BARE_SIDE, cast.text, a, b))),
-        None,
-    )
     there = _from_there(cast, stretches)
-    walker = mention.cls.is_walker or mention.is_prop
-    side_damage: list[tuple[int, int, RelativePosition, str]] = []  # across all stretches
-    for start, end in stretches:
-        # A rule's `unless` may see a little past the stretch ("from behind | a parked
-        # van"); the cue itself must lie inside it. The first hit of each position counts.
-        # "on the right"/"on its left" alone: a lane for a vehicle, the roadside for a walker.
-        bare = rulebook().first(Fact.BARE_SIDE, cast.text, start, end)
-        cues: list[tuple[int, int, RelativePosition, str]] = []
-        weak: list[tuple[int, int, RelativePosition, str]] = []
-        seen_values: set[tuple[str, bool]] = set()
-        for hit in rulebook().hits(Fact.START, cast.text, start, end + 40):
-            if (hit.value, hit.rule.weak) in seen_values:
-                continue
-            if hit.rule.about is Target.SUBJECT and subject_of(cast, hit.start) is not mention:
-                continue  # the words tell what the clause's subject does, and it is another
-            if _pronoun_means_another(cast, mention, hit):
-                continue  # "behind it" of a car named before: placed by that car
-            if hit.rule.after_turn and not ego_turns(cast):
-                continue  # "in the side street" of an ego that does not turn into it
-            seen_values.add((hit.value, hit.rule.weak))
-            if hit.end <= end:
-                cue = (hit.start, hit.order, RelativePosition(hit.value), hit.quote)
-                side = bare or side_said
-                if hit.rule.side_assumed and side and cue[2] in _SIDED:
-                    # "at the kerb ... on my left": the side said wins over the usual one.
-                    said = _SIDED[cue[2]][side.value]
-                    cue = (cue[0], cue[1], said, f"{cue[3]} ... {side.quote}")
-                (weak if hit.rule.weak else cues).append(cue)
-                if hit.rule.damage:
-                    damage.add(cue[:2])
-                if hit.rule.after_turn:
-                    routed.add(cue[:2])
-        on_route = any(cue[:2] in routed for cue in cues)
-        toward = next((c for c in [*cues, *weak] if c[2] is RelativePosition.ONCOMING), None)
-        turned = sorted(ego_turns(cast)) if on_route and toward else []
-        if toward is not None and len(turned) == 1:
-            # "riding toward the junction on the road the ego turns into": it comes along
-            # that road, from the side the ego turns to.
-            from_side = _CROSSING["left" if turned[0] == "turn_left" else "right"]
-            routed_quote = next(c[3] for c in cues if c[:2] in routed)
-            cues = [(toward[0], toward[1], from_side, f"{toward[3]} ... {routed_quote}")]
-            routed.clear()
-            weak = []
-        elif on_route:
-            # "double-parked just past the corner on the right": the side of the road the
-            # ego turns into, not a lane beside it; a kerb said still holds ("parked at the
-            # kerb just round the corner").
-            kerb = [c for c in cues if c[2] in _ROADSIDE.values()]
-            cues = kerb or [c for c in cues if c[:2] in routed]
-        side_damage += [c for c in cues if c[:2] in damage and c[2] in _ADJACENT.values()]
-        sided = [c for c in cues if c[2] in _SIDED]
-        if sided and any(c[2] in _ALONG for c in cues):
-            # "comes from behind in the left lane", "just ahead of me in the right-hand
-            # lane", "behind me, coming from my right": the side tells more than the end.
-            cues = [c for c in cues if c[2] not in _ALONG]
-        if side_said and cues and all(c[2] in _ALONG for c in cues) and not on_route:
-            # "beside me at left, a little in front": a side said beside an end is the
-            # side's lane (or kerb), as above.
-            cues = []
-        if cues and there and there[2] in _SIDED and all(c[2] in _ALONG for c in cues):
-            # "the lane on the right ... a motorbike comes there from behind": that lane.
-            cues = [there]
-        for cue in cues:
-            if best is None or cue[:2] < best[:2]:
-                best = cue
-        if weak and fallback is None:
-            fallback = min(weak, key=lambda cue: cue[:2])
-        if bare and best is None:
-            kind = RelativePosition.ROADSIDE_LEFT if walker else RelativePosition.ADJACENT_LANE_LEFT
-            best = (bare.start, 99, _SIDED[kind][bare.value], bare.quote)
-        # The lane the ego moves into ("a car coming up in that lane"): resolved by the ego's
-        # own lane change ("moves into the left lane").
-        target = rulebook().first(Fact.TARGET_LANE, cast.text, start, end)
-        lane_side = rulebook().first(Fact.LANE_SIDE, cast.text)
-        if target and not lane_side and fallback is None:
-            # The lane the ego turns into, with no lane change said: ahead on its route,
-            # unless the actor's words place it ("in that lane ... hit the AV's rear").
-            fallback = (target.start, -1, RelativePosition.AHEAD_SAME_LANE, target.quote)
-            if ego_turns(cast):  # "stopped in the lane the ego enters" as it turns: on that road
-                routed.add(fallback[:2])
-        behind_here = (
-            best is not None and best[2] is RelativePosition.BEHIND_SAME_LANE and best[0] >= start
-        )
-        if target and lane_side and (best is None or target.start < best[0] or behind_here):
-            position = (
-                RelativePosition.ADJACENT_LANE_LEFT
-                if lane_side.value == "left"
-                else RelativePosition.ADJACENT_LANE_RIGHT
-            )
-            best = (target.start, -1, position, f"{lane_side.quote} ... {target.quote}")
+    cues = _position_cues(cast, mention, stretches, there)
     # "came up behind the AV ...; struck its passenger-side rear": the side it hit tells
     # the lane it came up in, from behind (not the road across, as side damage alone does)
     from_behind = bool(
-        best is not None and best[2] in _ALONG and side_damage and best[:2] not in routed
+        cues.best is not None
+        and cues.best.position in _ALONG
+        and cues.side_damage
+        and cues.best.rank not in cues.routed
     )
-    if from_behind:
-        best = min(side_damage)
-    best = best or fallback or there
-    if by_another and best is not None and best[2] in _ALONG and _walks_or_rides(mention):
-        # "steps out from in front of it and walks across the ego's path": the side of
-        # the car it comes out by tells more than the path it crosses.
-        emerged = _by_another(cast, mention)
-        if emerged is not None:
-            return emerged
-    if by_another and best is not None and best[2] in _ADJACENT.values() and not walker:
-        # "behind it, on its right" of a truck coming the other way: on the truck's road
-        beside = _by_another(cast, mention)
-        if beside is not None and beside.value == RelativePosition.ONCOMING.value:
-            return beside
-    if best is None and not _walks_or_rides(mention):
-        waits_there = _waits_on_exit_street(cast, mention, stretches)
-        if waits_there is not None:
-            return waits_there
+    best = (min(cues.side_damage) if from_behind else cues.best) or cues.fallback
+    best = best or there
     if best is None:
-        return (
-            (
-                _by_another(cast, mention)
-                or _ego_verb_before(cast, mention, Fact.EGO_PASSES)
-                or _straight_through_the_turn(cast, mention, stretches)
-            )
-            if by_another
-            else None
-        )
-    position = best[2]
+        return _start_unplaced(cast, mention, stretches, by_another=by_another)
+    if by_another and (placed := _placed_by_another(cast, mention, best.position)) is not None:
+        return placed
+    position = best.position
+    damaged = best.rank in cues.damage
     if (
         position in _ADJACENT.values()
-        and (best[:2] in damage or _side_alone(mention, best[3]))
+        and (damaged or _side_alone(mention, best.quote))
         and not from_behind
         and _crosses_there(cast, mention)
     ):
         # "struck the AV on its driver's side", "a car on the ego's left at the four-way
         # stop": at a junction, the crossing road from that side
         position = _CROSSING[_SIDE_OF[position]]
-    elif position in _ADJACENT.values() and best[:2] in damage:
+    elif (
+        position in _ADJACENT.values()
+        and damaged
+        and (across := _straight_through_the_turn(cast, mention, stretches, position))
+    ):
         # "V2 went straight through and struck V1's passenger side" as V1 turned left
-        across = _straight_through_the_turn(cast, mention, stretches, position)
-        if across is not None:
-            return across
+        return across
+    walker = mention.cls.is_walker or mention.is_prop
     if (
         position is RelativePosition.BEHIND_SAME_LANE
         and not walker
@@ -784,7 +696,7 @@ def read_position(
     # Waiting in the lane a turning ego enters; one that moves on that road may come the
     # other way ("riding toward the junction on the road the ego turns into").
     exit_lane = (
-        best[:2] in routed
+        best.rank in cues.routed
         and position is RelativePosition.AHEAD_SAME_LANE
         and not moves_in(cast.text, stretches)
     )
@@ -792,7 +704,7 @@ def read_position(
         name="spawn_position",
         value=position.value,
         source=FactSource.TEXT,
-        quote=best[3],
+        quote=best.quote,
         detail=(
             StartDetail.EXIT_LANE
             if exit_lane
@@ -801,6 +713,193 @@ def read_position(
             else None
         ),
     )
+
+
+def _position_cues(
+    cast: Cast,
+    mention: Mention,
+    stretches: list[tuple[int, int]],
+    there: _Cue | None,
+) -> _PositionCues:
+    """The start each stretch of words about `mention` gives, the earliest cue winning."""
+    gathered = _PositionCues()
+    side_said = next(
+        (hit for a, b in stretches if (hit := rulebook().first(Fact.BARE_SIDE, cast.text, a, b))),
+        None,
+    )
+    walker = mention.cls.is_walker or mention.is_prop
+    for start, end in stretches:
+        # "on the right"/"on its left" alone: a lane for a vehicle, the roadside for a walker.
+        bare = rulebook().first(Fact.BARE_SIDE, cast.text, start, end)
+        cues, weak = _start_cues(cast, mention, (start, end), bare or side_said, gathered)
+        on_route = any(cue.rank in gathered.routed for cue in cues)
+        cues, weak = _on_the_road_entered(cast, cues, weak, gathered.routed, on_route=on_route)
+        gathered.side_damage += [
+            cue
+            for cue in cues
+            if cue.rank in gathered.damage and cue.position in _ADJACENT.values()
+        ]
+        cues = _side_over_end(cues, side_said, there, on_route=on_route)
+        for cue in cues:
+            if gathered.best is None or cue.rank < gathered.best.rank:
+                gathered.best = cue
+        if weak and gathered.fallback is None:
+            gathered.fallback = min(weak, key=lambda cue: cue.rank)
+        if bare and gathered.best is None:
+            kind = RelativePosition.ROADSIDE_LEFT if walker else RelativePosition.ADJACENT_LANE_LEFT
+            gathered.best = _Cue(bare.start, 99, _SIDED[kind][bare.value], bare.quote)
+        _read_target_lane(cast, (start, end), gathered)
+    return gathered
+
+
+def _start_cues(
+    cast: Cast,
+    mention: Mention,
+    stretch: tuple[int, int],
+    side: Hit | None,
+    gathered: _PositionCues,
+) -> tuple[list[_Cue], list[_Cue]]:
+    """The start rules' hits in one stretch about `mention`, strong and weak, the first hit
+    of each position counting; damage and on-route cues are noted in `gathered`."""
+    start, end = stretch
+    cues: list[_Cue] = []
+    weak: list[_Cue] = []
+    seen_values: set[tuple[str, bool]] = set()
+    # A rule's `unless` may see a little past the stretch ("from behind | a parked van");
+    # the cue itself must lie inside it.
+    for hit in rulebook().hits(Fact.START, cast.text, start, end + 40):
+        if (hit.value, hit.rule.weak) in seen_values:
+            continue
+        if hit.rule.about is Target.SUBJECT and subject_of(cast, hit.start) is not mention:
+            continue  # the words tell what the clause's subject does, and it is another
+        if _pronoun_means_another(cast, mention, hit):
+            continue  # "behind it" of a car named before: placed by that car
+        if hit.rule.after_turn and not ego_turns(cast):
+            continue  # "in the side street" of an ego that does not turn into it
+        seen_values.add((hit.value, hit.rule.weak))
+        if hit.end > end:
+            continue
+        cue = _Cue(hit.start, hit.order, RelativePosition(hit.value), hit.quote)
+        if hit.rule.side_assumed and side and cue.position in _SIDED:
+            # "at the kerb ... on my left": the side said wins over the usual one.
+            said = _SIDED[cue.position][side.value]
+            cue = cue._replace(position=said, quote=f"{cue.quote} ... {side.quote}")
+        (weak if hit.rule.weak else cues).append(cue)
+        if hit.rule.damage:
+            gathered.damage.add(cue.rank)
+        if hit.rule.after_turn:
+            gathered.routed.add(cue.rank)
+    return cues, weak
+
+
+def _on_the_road_entered(
+    cast: Cast,
+    cues: list[_Cue],
+    weak: list[_Cue],
+    routed: set[tuple[int, int]],
+    *,
+    on_route: bool,
+) -> tuple[list[_Cue], list[_Cue]]:
+    """Cues on the road a turning ego enters: one coming toward the junction along it comes
+    from the side the ego turns to; else the side of that road, not a lane beside the ego."""
+    toward = next(
+        (cue for cue in [*cues, *weak] if cue.position is RelativePosition.ONCOMING), None
+    )
+    turned = sorted(ego_turns(cast)) if on_route and toward else []
+    if toward is not None and len(turned) == 1:
+        # "riding toward the junction on the road the ego turns into"
+        from_side = _CROSSING["left" if turned[0] == "turn_left" else "right"]
+        routed_quote = next(cue.quote for cue in cues if cue.rank in routed)
+        routed.clear()
+        return [toward._replace(position=from_side, quote=f"{toward.quote} ... {routed_quote}")], []
+    if on_route:
+        # "double-parked just past the corner on the right": the side of the road the ego
+        # turns into; a kerb said still holds ("parked at the kerb just round the corner").
+        kerb = [cue for cue in cues if cue.position in _ROADSIDE.values()]
+        return kerb or [cue for cue in cues if cue.rank in routed], weak
+    return cues, weak
+
+
+def _side_over_end(
+    cues: list[_Cue],
+    side_said: Hit | None,
+    there: _Cue | None,
+    *,
+    on_route: bool,
+) -> list[_Cue]:
+    """A side said tells more than an end (ahead or behind) said with it."""
+    if any(cue.position in _SIDED for cue in cues) and any(cue.position in _ALONG for cue in cues):
+        # "comes from behind in the left lane", "just ahead of me in the right-hand lane",
+        # "behind me, coming from my right"
+        cues = [cue for cue in cues if cue.position not in _ALONG]
+    if side_said and cues and all(cue.position in _ALONG for cue in cues) and not on_route:
+        # "beside me at left, a little in front": the side's lane (or kerb), read apart
+        return []
+    if cues and there and there.position in _SIDED and all(cue.position in _ALONG for cue in cues):
+        # "the lane on the right ... a motorbike comes there from behind": that lane.
+        return [there]
+    return cues
+
+
+def _read_target_lane(cast: Cast, stretch: tuple[int, int], gathered: _PositionCues) -> None:
+    """ "A car coming up in that lane": the lane the ego moves into, by its own lane change
+    ("moves into the left lane"); with none said, the lane a turning ego enters."""
+    start, end = stretch
+    target = rulebook().first(Fact.TARGET_LANE, cast.text, start, end)
+    if target is None:
+        return
+    lane_side = rulebook().first(Fact.LANE_SIDE, cast.text)
+    if not lane_side and gathered.fallback is None:
+        # Ahead on its route, unless the actor's words place it ("in that lane ... hit the
+        # AV's rear").
+        gathered.fallback = _Cue(target.start, -1, RelativePosition.AHEAD_SAME_LANE, target.quote)
+        if ego_turns(cast):  # "stopped in the lane the ego enters" as it turns: on that road
+            gathered.routed.add(gathered.fallback.rank)
+    best = gathered.best
+    behind_here = (
+        best is not None and best.position is RelativePosition.BEHIND_SAME_LANE and best.at >= start
+    )
+    if lane_side and (best is None or target.start < best.at or behind_here):
+        position = (
+            RelativePosition.ADJACENT_LANE_LEFT
+            if lane_side.value == "left"
+            else RelativePosition.ADJACENT_LANE_RIGHT
+        )
+        gathered.best = _Cue(target.start, -1, position, f"{lane_side.quote} ... {target.quote}")
+
+
+def _start_unplaced(
+    cast: Cast, mention: Mention, stretches: list[tuple[int, int]], *, by_another: bool
+) -> GroundedFact | None:
+    """The start of an actor whose own words say none: waiting on the street a turning ego
+    enters, placed by another actor, passed by the ego, or through the ego's turn."""
+    if not _walks_or_rides(mention):
+        waits_there = _waits_on_exit_street(cast, mention, stretches)
+        if waits_there is not None:
+            return waits_there
+    if not by_another:
+        return None
+    return (
+        _by_another(cast, mention)
+        or _ego_verb_before(cast, mention, Fact.EGO_PASSES)
+        or _straight_through_the_turn(cast, mention, stretches)
+    )
+
+
+def _placed_by_another(
+    cast: Cast, mention: Mention, position: RelativePosition
+) -> GroundedFact | None:
+    """Where another actor places `mention` when that tells more than its own words."""
+    if position in _ALONG and _walks_or_rides(mention):
+        # "steps out from in front of it and walks across the ego's path": the side of the
+        # car it comes out by tells more than the path it crosses.
+        return _by_another(cast, mention)
+    if position in _ADJACENT.values() and not (mention.cls.is_walker or mention.is_prop):
+        # "behind it, on its right" of a truck coming the other way: on the truck's road
+        beside = _by_another(cast, mention)
+        if beside is not None and beside.value == RelativePosition.ONCOMING.value:
+            return beside
+    return None
 
 
 #: Where a vehicle that goes straight on, its side unsaid, comes from while the ego turns:
