@@ -113,6 +113,7 @@ DEVSET_FILES: dict[DevSet, str] = {
     DevSet.FRESH2: "fresh2.jsonl",
     DevSet.FRESH3: "fresh3.jsonl",
     DevSet.FRESH4: "fresh4.jsonl",
+    DevSet.FRESH5: "fresh5.jsonl",
     DevSet.PLACEMENT: "placement.jsonl",
 }
 
