@@ -25,6 +25,7 @@ from pathlib import Path
 
 from arise.evaluate.fidelity import (
     DEVSET_DIR,
+    DEVSET_FILES,
     Direction,
     LabeledActor,
     LabeledDescription,
@@ -51,18 +52,7 @@ NEUTRAL = ExtractionAnswer.model_validate(
         "requirements": [],
     }
 )
-DEV_FILES = (
-    "short.jsonl",
-    "nhtsa.jsonl",
-    "crash_reports.jsonl",
-    "styles.jsonl",
-    "variants.jsonl",
-    "fresh.jsonl",
-    "fresh2.jsonl",
-    "fresh3.jsonl",
-    "fresh4.jsonl",
-    "placement.jsonl",
-)
+DEV_FILES = tuple(DEVSET_FILES.values())
 
 
 def snapshot() -> list[dict[str, object]]:

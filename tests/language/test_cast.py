@@ -65,7 +65,8 @@ def test_numbered_parties_the_autonomous_one_is_the_ego() -> None:
         "rear bumper. V1 stopped."
     )
     cast = parse(text)
-    assert [text[s.start : s.end] for s in cast.ego] == ["V2"]
+    # what it is, set off after its number, is the ego too
+    assert [text[s.start : s.end] for s in cast.ego] == ["V2", "a self-driving shuttle"]
     assert [m.quote for m in cast.others] == ["V1"]
 
 
@@ -305,3 +306,27 @@ def test_a_noun_phrase_reaches_back_over_a_year_and_a_made_up_make() -> None:
 )
 def test_a_crossing_named_by_its_walkers_is_a_place(text: str, classes: list[str]) -> None:
     assert [m.cls.value for m in parse(text).others] == classes
+
+
+def test_the_ego_is_named_by_what_it_is_and_what_is_said_of_it() -> None:
+    text = (
+        "Test car turns left as I wait in my tipper lorry. The AV, a 2031 Rellan Vesk, keeps going."
+    )
+    cast = parse(text)
+    assert [text[s.start : s.end] for s in cast.ego] == [
+        "Test car",
+        "I",
+        "my tipper lorry",
+        "AV",
+        "a 2031 Rellan Vesk",
+    ]
+    assert cast.others == ()
+
+
+def test_with_no_name_for_the_ego_the_vehicle_is_the_ego() -> None:
+    text = "Right-turning vehicle clips a cyclist riding beside it; the vehicle's mirror breaks."
+    cast = parse(text)
+    assert [text[s.start : s.end] for s in cast.ego] == ["Right-turning vehicle", "the vehicle's"]
+    assert [m.cls.value for m in cast.others] == ["Bicycle"]
+    introduced = "A vehicle pulls out of a drive and the vehicle stops across the lane."
+    assert parse(introduced).ego == ()

@@ -104,6 +104,44 @@ _NHTSA_EGO_AFTER_PREPOSITION = re.compile(
 # ... and "the vehicle's" (its path, its right side): the typology names the other one "other
 # vehicle" or by its kind.
 _NHTSA_EGO_OWNS = re.compile(r"\bthe vehicle['\u2019]s\b", re.I)
+# With no other name for the ego, the typology's other wording: "the vehicle" (and a
+# sentence's leading "Left-turning vehicle") is the one the scenario is about, where the
+# others are named by their kind ("a pickup", "an oncoming vehicle"). Not "the vehicle
+# ahead" or "the vehicle that ran the red", which place or pick out another one.
+_THE_VEHICLE = re.compile(
+    r"\bthe vehicle(?:['\u2019]s)?\b(?!\s+(?:ahead|in front|behind|beside|alongside|"
+    r"next|opposite|that|which|who|to (?:the|its|his|her)|on (?:the|its)|in (?:the|its)))",
+    re.I,
+)
+_LEADING_VEHICLE = re.compile(r"(?:^|(?<=[.;:]\s))[A-Z][\w-]*(?:ing|bound) vehicle\b")
+# A vehicle brought in with an article before "the vehicle": that one is what it refers to.
+_A_VEHICLE = re.compile(r"\b(?:a|an|another|one)\s+(?:[\w-]+\s+){0,3}?vehicle\b", re.I)
+# The writer's own vehicle by any vehicle noun ("my hatchback", "our tipper lorry"), and the
+# one under test by what it is ("the automated car", "Automated shuttle van", "the test car").
+_OWN_OR_UNDER_TEST = re.compile(
+    r"(?:\b(?:my|our|your)|(?:\b(?:the|an?)\s+)?\b(?:automated|autonomous|self-driving|"
+    r"driverless|test))\s+(?:[\w'-]+\s+){0,2}?$",
+    re.I,
+)
+_EGO_BODIES = frozenset({ActorClass.CAR, ActorClass.TRUCK, ActorClass.VAN, ActorClass.BUS})
+# Car nouns that name a person or a party, never the writer's own vehicle.
+_PARTY_NOUNS = frozenset(
+    {
+        "driver",
+        "drivers",
+        "motorist",
+        "motorists",
+        "claimant",
+        "claimants",
+        "third party",
+        "other party",
+        "pov",
+        "veh",
+        "vehs",
+    }
+)
+# What the ego is, set off after its name: "The AV, a 2026 Corvane Lumen, was travelling".
+_EGO_APPOSITION = re.compile(r"(?:\s*\([^()]{1,30}\))?,\s+(an?\s+[^,.;()]{1,60}?)\s*(?=,)")
 # A year and a capitalised name ("a 2017 Hollis Tern"), or a known make ("a white Subaru").
 _YEAR_NAME = re.compile(
     r"\b(?:19[5-9]\d|20[0-4]\d)\s+(?:[A-Z][\w-]*)(?:\s+(?:[A-Z0-9][\w-]*))?(?:\s+(?:[A-Z0-9][\w-]*))?"
@@ -178,7 +216,7 @@ class Cast:
 
     def subject_before(self, position: int) -> Mention | str | None:
         """The actor ("ego" or a Mention) named last before `position` in its sentence."""
-        sentence_start = _sentence_start(self.text, position)
+        sentence_start = sentence_start(self.text, position)
         best: tuple[int, Mention | str] | None = None
         for span in self.ego:
             possessive = self.text[span.start : span.end].lower().endswith("'s")
@@ -224,7 +262,8 @@ class Cast:
         return self.mention_at(position, position + 1)
 
 
-def _sentence_start(text: str, position: int) -> int:
+def sentence_start(text: str, position: int) -> int:
+    """Where the sentence holding `position` starts."""
     ends = [m.end() for m in _SENTENCE.finditer(text, 0, position)]
     return ends[-1] if ends else 0
 
@@ -281,6 +320,11 @@ def _ego_spans(text: str) -> list[Span]:
         Span(m.start(), m.end() + (2 if _POSSESSIVE.match(text, m.end()) else 0))
         for m in class_pattern("ego").finditer(plain)
     ]
+    spans += [
+        own
+        for own in _own_vehicles(text)
+        if not any(s.start < own.end and own.start < s.end for s in spans)
+    ]
     # "our insured's vehicle", "the AV's car": the ego's own vehicle is the ego.
     spans = [
         Span(s.start, owned.end()) if (owned := _OWN_VEHICLE.match(text, s.end)) else s
@@ -301,7 +345,43 @@ def _ego_spans(text: str) -> list[Span]:
     ego_number = _numbered_ego(text)
     if ego_number is not None:
         spans += [Span(*m.span()) for m in _NUMBERED.finditer(text) if m.group(1) == ego_number]
+    if not spans:
+        spans = _unnamed_ego(text)
+    spans += [
+        Span(*found.span(1))
+        for span in spans
+        if (found := _EGO_APPOSITION.match(text, span.end)) and " and " not in found.group(1)
+    ]
     return sorted(set(spans), key=lambda s: s.start)
+
+
+def _own_vehicles(text: str) -> list[Span]:
+    """ "I was waiting in my hatchback", "Automated car is making the right turn": the
+    vehicle the writer drives, or the one said to be under test, by any car-like noun."""
+    found = []
+    for match in lexicon().noun_pattern.finditer(text):
+        cls = ActorClass(noun_class(match))
+        if cls not in _EGO_BODIES or match.group(0).lower() in _PARTY_NOUNS:
+            continue
+        before = text[max(0, match.start() - 40) : match.start()]
+        owner = _OWN_OR_UNDER_TEST.search(before)
+        if owner is not None:
+            end = match.end() + (2 if _POSSESSIVE.match(text, match.end()) else 0)
+            found.append(Span(match.start() - len(before) + owner.start(), end))
+    return found
+
+
+def _unnamed_ego(text: str) -> list[Span]:
+    """The ego of a text that gives it no name of its own: "Left-turning vehicle at a
+    signal strikes a pedestrian ... the vehicle"; the vehicles named before with an article
+    are others ("a van stops; the vehicle reverses" is the van)."""
+    introduced = next((m.start() for m in _A_VEHICLE.finditer(text)), len(text))
+    return [
+        Span(*m.span())
+        for pattern in (_LEADING_VEHICLE, _THE_VEHICLE)
+        for m in pattern.finditer(text)
+        if m.start() < introduced
+    ]
 
 
 def read_cast(text: str) -> Cast:

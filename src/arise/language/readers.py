@@ -21,6 +21,7 @@ from arise.language.cast import (
     party_number,
     phrase_start,
     sentence_end,
+    sentence_start,
 )
 from arise.language.facts import FactSource, GroundedFact, StartFact, start_detail
 from arise.language.quotes import find_quote
@@ -546,6 +547,37 @@ def _walks_or_rides(mention: Mention) -> bool:
     return mention.cls in (ActorClass.PEDESTRIAN, ActorClass.BICYCLE)
 
 
+#: At most this many words open a sentence before the actor they place ("Out of the gap
+#: between two parked cars on the left, a child comes running").
+_FRONTED_WORDS = 14
+_CLAUSE_LEAD = re.compile(r"[\s,;:]*(?:(?:and|then|when|suddenly)\s+)?", re.I)
+
+
+def _fronted_by_another(cast: Cast, mention: Mention) -> list[tuple[int, int]]:
+    """The words that open the sentence of `mention` before its phrase when they place it
+    by another actor from the first word ("out of the gap between the vans comes a boy"):
+    they name that actor, so they are not the actor's own words (`words_of`)."""
+    text = cast.text
+    found = []
+    for span in mention.spans:
+        opened = phrase_start(text, span.start)
+        first = sentence_start(text, opened)
+        # the sentence's start, or a clause's in it ("Two vans are parked, and out of ...")
+        for start in sorted({first, *(c.start for c in cast.clauses if first < c.start < opened)}):
+            lead = _CLAUSE_LEAD.match(text, start)
+            start = lead.end() if lead else start
+            hit = rulebook().first(Fact.BY_ANOTHER, text, start, opened)
+            if (
+                hit is not None
+                and hit.value == "emerges"
+                and hit.start == start
+                and len(text[start:opened].split()) <= _FRONTED_WORDS
+            ):
+                found.append((start, opened))
+                break
+    return found
+
+
 def _by_another(cast: Cast, mention: Mention) -> GroundedFact | None:
     """A start said by another actor whose start the text gives: a walker that steps out
     from behind (or in front of) a van parked on the left crosses from the left; a vehicle
@@ -553,7 +585,7 @@ def _by_another(cast: Cast, mention: Mention) -> GroundedFact | None:
     oncoming car is oncoming."""
     text = cast.text
     walker = _walks_or_rides(mention)
-    for start, end in words_of(cast, mention):
+    for start, end in [*words_of(cast, mention), *_fronted_by_another(cast, mention)]:
         for hit in rulebook().hits(Fact.BY_ANOTHER, text, start, min(len(text), end + 1)):
             other = _named_after(cast, mention, hit.end)
             if other is None:
