@@ -330,3 +330,11 @@ def test_with_no_name_for_the_ego_the_vehicle_is_the_ego() -> None:
     assert [m.cls.value for m in cast.others] == ["Bicycle"]
     introduced = "A vehicle pulls out of a drive and the vehicle stops across the lane."
     assert parse(introduced).ego == ()
+
+
+def test_the_one_named_last_before_a_word_in_its_sentence() -> None:
+    text = "The AV slows. A van ahead brakes hard while the ego waits."
+    cast = parse(text)
+    assert cast.subject_before(text.index("brakes")).quote == "A van"
+    assert cast.subject_before(text.index("waits")) == "ego"
+    assert cast.subject_before(text.index("slows")) == "ego"

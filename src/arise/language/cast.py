@@ -216,21 +216,19 @@ class Cast:
 
     def subject_before(self, position: int) -> Mention | str | None:
         """The actor ("ego" or a Mention) named last before `position` in its sentence."""
-        sentence_start = sentence_start(self.text, position)
+        begins = sentence_start(self.text, position)
         best: tuple[int, Mention | str] | None = None
         for span in self.ego:
             possessive = self.text[span.start : span.end].lower().endswith("'s")
             if (
-                sentence_start <= span.start < position
+                begins <= span.start < position
                 and not possessive
                 and (best is None or span.start > best[0])
             ):
                 best = (span.start, "ego")
         for mention in self.others:
             for span in mention.spans:
-                if sentence_start <= span.start < position and (
-                    best is None or span.start > best[0]
-                ):
+                if begins <= span.start < position and (best is None or span.start > best[0]):
                     best = (span.start, mention)
         return best[1] if best else None
 
