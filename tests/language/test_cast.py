@@ -338,3 +338,9 @@ def test_the_one_named_last_before_a_word_in_its_sentence() -> None:
     assert cast.subject_before(text.index("brakes")).quote == "A van"
     assert cast.subject_before(text.index("waits")) == "ego"
     assert cast.subject_before(text.index("slows")) == "ego"
+
+
+def test_the_ego_pronoun_with_a_verb_joined_on() -> None:
+    text = "You're waiting to turn left and I'm behind a bus."
+    cast = parse(text)
+    assert [text[s.start : s.end] for s in cast.ego] == ["You're", "I'm"]

@@ -1539,7 +1539,8 @@ def read_ego_stopped(reading: Reading) -> None:
     for hit in rulebook().hits(Fact.EGO_HELD, cast.text):
         if subject_of(cast, hit.start) == "ego":
             if any(
-                off.start > hit.start and subject_of(cast, off.start) == "ego"
+                off.start > hit.start
+                and (off.rule.about is Target.SCENE or subject_of(cast, off.start) == "ego")
                 for off in rulebook().hits(Fact.EGO_MOVES_OFF, cast.text)
             ):
                 return  # "waiting at the light ... as we pulled off": it sets off
