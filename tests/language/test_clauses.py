@@ -38,6 +38,12 @@ def _subject_of(text: str, words: str) -> str | None:
         # a place opening the clause puts the subject after its verb
         ("The ego waits. Out of the side road is coming a tractor.", "is coming", "a tractor"),
         ("The ego brakes, then from behind a moped is coming fast.", "fast", "a moped"),
+        (
+            "I pull out, but along the outside lane from far behind arrive very fast two bikes.",
+            "arrive",
+            "two bikes",
+        ),
+        ("The ego slowed. Out of the fog came a tractor.", "came", "a tractor"),
         # "It" opening a sentence means one named before, not a later sentence's subject
         (
             "My car was in the left lane. A van was parked on my right. It pulled out. "

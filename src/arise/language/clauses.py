@@ -95,7 +95,10 @@ def _spans(cast: Cast) -> list[tuple[Span, Actor]]:
 # A verb of motion right after an actor makes it the subject even after a preposition
 # ("from behind one motorbike is coming"), and right before one where a place opens the
 # clause ("from left side is coming a bus").
-_MOTION = r"(?:com(?:e|es|ing)|go(?:es|ing)?|went|appear(?:s|ed|ing)?|approach(?:es|ed|ing)?)"
+_MOTION = (
+    r"(?:com(?:e|es|ing)|came|go(?:es|ing)?|went|appear(?:s|ed|ing)?|approach(?:es|ed|ing)?|"
+    r"arriv(?:e|es|ed|ing)|emerg(?:e|es|ed|ing))"
+)
 _VERB_AFTER = re.compile(
     rf"\s+(?:(?:is|are|was|were)\s+)?(?:also\s+|suddenly\s+)?{_MOTION}\b", re.I
 )
@@ -162,7 +165,7 @@ def _inverted_subject(
     for span, actor in spans:
         if start <= span.start < end:
             between = cast.text[start : phrase_start(cast.text, span.start)]
-            if len(between.split()) <= 8 and _motion_verb_before(cast, start, span):
+            if len(between.split()) <= 10 and _motion_verb_before(cast, start, span):
                 return actor
     return None
 
