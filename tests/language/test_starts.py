@@ -343,3 +343,21 @@ def test_a_standing_adversary_the_ego_goes_round_stands_in_its_lane() -> None:
 )
 def test_where_the_subject_comes_from_said_before_it(text: str) -> None:
     assert read_description(text).facts["spawn_position"].value == "crossing_road_from_right"
+
+
+def test_on_the_street_a_turning_ego_enters_named_by_its_name() -> None:
+    """Coming toward the ego along the street it turns onto is coming from the side it
+    turns to; a lorry just round the corner that the ego waits behind stands in its exit
+    lane."""
+    from arise.language.actors import read_actors
+
+    text = (
+        "You turn right from Mill Road into Gorse Street. A horsebox has broken down just "
+        "round the corner. Down Gorse Street a jogger is running towards you. Wait behind "
+        "the horsebox until the jogger is past."
+    )
+    reading = read_description(text)
+    assert reading.facts["spawn_position"].value == "ahead_same_lane"
+    assert reading.facts["start_detail"].value == "exit_lane"
+    [jogger] = [a for a in read_actors(reading) if a.scenic_class == "Pedestrian"]
+    assert jogger.start is not None and jogger.start.value == "crossing_road_from_right"

@@ -252,7 +252,7 @@ def _just_after(at: int, end: int) -> bool:
 #: A place phrase that opens a clause before its subject: a preposition, no verb.
 _FRONTED_PLACE = re.compile(
     r"\s*(?:and\s+)?(?:just\s+|right\s+|shortly\s+|further\s+|up\s+|then\s+)?(?:ahead\s+)?"
-    r"(?:on|in|at|to|off|beside|alongside|across|after|past|round|around)\s"
+    r"(?:on|in|at|to|off|beside|alongside|along|down|across|after|past|round|around)\s"
     r"(?![^,]*\b\w+(?:ing|ed|s)\b)[^,]*$",
     re.I,
 )
@@ -672,11 +672,17 @@ def read_position(
         or _ego_verb_before(cast, mention, Fact.EGO_BEHIND)
         or (_squeezed_beside(cast, mention) if squeezed else None)
     )
-    if told is not None:
-        return told
     stretches = words_of(cast, mention)
     there = _from_there(cast, stretches)
     cues = _position_cues(cast, mention, stretches, there)
+    if told is not None and not (
+        told.value == RelativePosition.AHEAD_SAME_LANE.value
+        and cues.best is not None
+        and cues.best.rank in cues.routed
+    ):
+        # ... but a turning ego that waits behind it ("hold back behind the lorry") meets it
+        # where its own words put it, just round the corner
+        return told
     # "came up behind the AV ...; struck its passenger-side rear": the side it hit tells
     # the lane it came up in, from behind (not the road across, as side damage alone does)
     from_behind = bool(
@@ -760,10 +766,17 @@ def _position_cues(
         None,
     )
     walker = mention.cls.is_walker or mention.is_prop
+    on_exit_street = bool(ego_turns(cast)) and any(
+        _exit_street_named(cast, cast.text[a:b]) for a, b in stretches
+    )
     for start, end in stretches:
         # "on the right"/"on its left" alone: a lane for a vehicle, the roadside for a walker.
         bare = rulebook().first(Fact.BARE_SIDE, cast.text, start, end)
         cues, weak = _start_cues(cast, mention, (start, end), bare or side_said, gathered)
+        if on_exit_street:
+            # "Along Abbeymoor Lane a cyclist is heading your way": on the street it enters
+            toward = (cue for cue in cues if cue.position is RelativePosition.ONCOMING)
+            gathered.routed.update(cue.rank for cue in toward)
         on_route = any(cue.rank in gathered.routed for cue in cues)
         cues, weak = _on_the_road_entered(cast, cues, weak, gathered.routed, on_route=on_route)
         gathered.side_damage += [
@@ -1315,7 +1328,9 @@ def _exit_street_named(cast: Cast, words: str) -> str | None:
     Code, not a rule: a street's name is a capitalised word, and patterns ignore case."""
     for onto in _ONTO_STREET.finditer(cast.text):
         if subject_of(cast, onto.start()) == "ego":
-            named = re.search(rf"\b(?:on|across|of) {re.escape(onto.group(1))}", words)
+            named = re.search(
+                rf"\b(?:on|across|of|along|down|up|in) {re.escape(onto.group(1))}", words, re.I
+            )
             return named.group(0) if named else None
     return None
 
