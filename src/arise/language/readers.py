@@ -767,7 +767,7 @@ def _position_cues(
     )
     walker = mention.cls.is_walker or mention.is_prop
     on_exit_street = bool(ego_turns(cast)) and any(
-        _exit_street_named(cast, cast.text[a:b]) for a, b in stretches
+        _exit_street_named(cast, cast.text[a:b], along=True) for a, b in stretches
     )
     for start, end in stretches:
         # "on the right"/"on its left" alone: a lane for a vehicle, the roadside for a walker.
@@ -1322,15 +1322,15 @@ _ONTO_STREET = re.compile(
 )
 
 
-def _exit_street_named(cast: Cast, words: str) -> str | None:
+def _exit_street_named(cast: Cast, words: str, *, along: bool = False) -> str | None:
     """ "the AV was turning right ... onto Tamsin Street when a pedestrian entered the
     crosswalk on Tamsin Street": the street the ego turns onto, named in the actor's words.
     Code, not a rule: a street's name is a capitalised word, and patterns ignore case."""
     for onto in _ONTO_STREET.finditer(cast.text):
         if subject_of(cast, onto.start()) == "ego":
-            named = re.search(
-                rf"\b(?:on|across|of|along|down|up|in) {re.escape(onto.group(1))}", words, re.I
-            )
+            # "along"/"down" it: a way of moving on it, not a place to stand
+            places = "on|across|of|along|down|up" if along else "on|across|of"
+            named = re.search(rf"\b(?:{places}) {re.escape(onto.group(1))}", words, re.I)
             return named.group(0) if named else None
     return None
 
