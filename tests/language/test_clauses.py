@@ -170,3 +170,16 @@ def test_he_after_we_is_the_other_driver() -> None:
     assert cast.subject_at(text.index("goes out")) is cast.others[0]
     facts = read_facts(text)
     assert "stationary" not in facts["A van"]
+
+
+def test_a_noun_phrase_does_not_reach_back_across_a_preposition() -> None:
+    """ "was in the next lane a little ahead of V1 when ...": V1 is no subject of that
+    clause; the words before "ahead" are not its phrase."""
+    from arise.language.cast import phrase_start
+
+    text = "V2, a lorry, was in the next lane a little ahead of V1 when its driver braked."
+    assert phrase_start(text, text.index("V1")) == text.index("V1")
+    assert phrase_start(text, text.index("lorry")) == text.index("a lorry")
+    cast = parse(text)
+    was = next(c for c in cast.clauses if cast.text[c.start : c.end].strip().startswith("was"))
+    assert was.subject is not None and was.subject != "ego"

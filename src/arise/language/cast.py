@@ -893,7 +893,9 @@ _NO_ARTICLE = re.compile(r"(?:it|they|them|he|she|him|her|i|we|you|me|us)\b", re
 #: starts after "as", not at "the".
 _PHRASE_STOP = re.compile(
     r"^(?:as|and|or|but|when|while|then|that|which|who|to|from|in|into|on|onto|at|by|"
-    r"with|for|was|were|is|are|has|had|lane|lanes)$",
+    r"with|for|was|were|is|are|has|had|lane|lanes|behind|ahead|past|near|beside|alongside|"
+    r"toward|towards|across|along|over|under|through|off|around|round|between|than|after|"
+    r"before)$",
     re.I,
 )
 
