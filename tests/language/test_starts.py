@@ -361,3 +361,12 @@ def test_on_the_street_a_turning_ego_enters_named_by_its_name() -> None:
     assert reading.facts["start_detail"].value == "exit_lane"
     [jogger] = [a for a in read_actors(reading) if a.scenic_class == "Pedestrian"]
     assert jogger.start is not None and jogger.start.value == "crossing_road_from_right"
+
+
+def test_ahead_in_the_same_lane_then_a_side_of_the_ego_hit_is_that_lane_ahead() -> None:
+    facts = read_description(
+        "The AV was on the motorway. V2, a van, was a little ahead of the AV when it swerved "
+        "and struck the AV's right front corner."
+    ).facts
+    assert facts["spawn_position"].value == "adjacent_lane_right"
+    assert facts["start_detail"].value == "ahead"

@@ -414,6 +414,7 @@ def _ego_verb_before(cast: Cast, mention: Mention, cue: Fact) -> GroundedFact | 
 
 
 _ALONG = (RelativePosition.AHEAD_SAME_LANE, RelativePosition.BEHIND_SAME_LANE)
+_BEHIND = RelativePosition.BEHIND_SAME_LANE
 #: The starts that have a side, in pairs: the same start on the left and on the right.
 _PAIRS: tuple[dict[str, RelativePosition], ...] = (
     {"left": RelativePosition.ROADSIDE_LEFT, "right": RelativePosition.ROADSIDE_RIGHT},
@@ -684,14 +685,17 @@ def read_position(
         # where its own words put it, just round the corner
         return told
     # "came up behind the AV ...; struck its passenger-side rear": the side it hit tells
-    # the lane it came up in, from behind (not the road across, as side damage alone does)
-    from_behind = bool(
+    # the lane it came up in, from behind (not the road across, as side damage alone does);
+    # "a little ahead of V1 ... struck V1's left front corner": that lane, ahead
+    along_then_hit = bool(
         cues.best is not None
         and cues.best.position in _ALONG
         and cues.side_damage
         and cues.best.rank not in cues.routed
     )
-    best = (min(cues.side_damage) if from_behind else cues.best) or cues.fallback
+    from_behind = along_then_hit and cues.best is not None and cues.best.position is _BEHIND
+    ahead_beside = along_then_hit and not from_behind
+    best = (min(cues.side_damage) if along_then_hit else cues.best) or cues.fallback
     best = best or there
     if best is None:
         return _start_unplaced(cast, mention, stretches, by_another=by_another)
@@ -702,7 +706,7 @@ def read_position(
     if (
         position in _ADJACENT.values()
         and (damaged or _side_alone(mention, best.quote))
-        and not from_behind
+        and not along_then_hit
         and _crosses_there(cast, mention)
     ):
         # "struck the AV on its driver's side", "a car on the ego's left at the four-way
@@ -748,6 +752,8 @@ def read_position(
             if exit_lane
             else StartDetail.FROM_BEHIND
             if from_behind and position in _ADJACENT.values()
+            else StartDetail.AHEAD
+            if ahead_beside and position in _ADJACENT.values()
             else None
         ),
     )
