@@ -141,7 +141,7 @@ _PARTY_NOUNS = frozenset(
     }
 )
 # What the ego is, set off after its name: "The AV, a 2026 Corvane Lumen, was travelling".
-_EGO_APPOSITION = re.compile(r"(?:\s*\([^()]{1,30}\))?,\s+(an?\s+[^,.;()]{1,60}?)\s*(?=,)")
+_EGO_APPOSITION = re.compile(r"(?:\s*\([^()]{1,30}\))?,\s+(an?\s+[^,.;()]{1,60}?)\s*(?=,|\()")
 # A year and a capitalised name ("a 2017 Hollis Tern"), or a known make ("a white Subaru").
 _YEAR_NAME = re.compile(
     r"\b(?:19[5-9]\d|20[0-4]\d)\s+(?:[A-Z][\w-]*)(?:\s+(?:[A-Z0-9][\w-]*))?(?:\s+(?:[A-Z0-9][\w-]*))?"
