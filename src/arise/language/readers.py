@@ -705,7 +705,7 @@ def read_position(
     damaged = best.rank in cues.damage
     if (
         position in _ADJACENT.values()
-        and (damaged or _side_alone(mention, best.quote))
+        and (damaged or _side_alone(mention, " ".join(cast.text[a:b] for a, b in stretches)))
         and not along_then_hit
         and _crosses_there(cast, mention)
     ):
