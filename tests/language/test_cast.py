@@ -344,3 +344,8 @@ def test_the_ego_pronoun_with_a_verb_joined_on() -> None:
     text = "You're waiting to turn left and I'm behind a bus."
     cast = parse(text)
     assert [text[s.start : s.end] for s in cast.ego] == ["You're", "I'm"]
+
+
+def test_the_bike_after_a_motorcyclist_is_that_motorcycle() -> None:
+    cast = parse("A motorcyclist runs the red; let the bike clear the junction.")
+    assert [(m.cls.value, len(m.spans)) for m in cast.others] == [("Motorcycle", 2)]

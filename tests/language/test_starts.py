@@ -370,3 +370,12 @@ def test_ahead_in_the_same_lane_then_a_side_of_the_ego_hit_is_that_lane_ahead() 
     ).facts
     assert facts["spawn_position"].value == "adjacent_lane_right"
     assert facts["start_detail"].value == "ahead"
+
+
+def test_the_place_a_where_clause_opens_on_is_where_its_subject_is() -> None:
+    facts = read_description(
+        "The AV waits at the lights. A lorry blocks its view of a cross street on the left, "
+        "where a cyclist is about to jump the red."
+    ).facts
+    assert facts["adversary_class"].value == "Bicycle"
+    assert facts["spawn_position"].value == "crossing_road_from_left"

@@ -827,7 +827,13 @@ def _same_thing(
     for earlier in reversed(found):
         if generic_vehicle and earlier.cls in VEHICLE_CLASSES and cls is ActorClass.CAR:
             return earlier
+        if word.lower() in _ANY_TWO_WHEELER and earlier.cls.is_two_wheeler:
+            return earlier  # "a motorcyclist ... let the bike clear the junction"
     return None
+
+
+#: Words that may mean a bicycle or a motorbike, the one named before.
+_ANY_TWO_WHEELER = frozenset({"bike", "bikes", "rider", "riders"})
 
 
 #: A claim party named with no article, as claim notes write it ("Claimant states ...").

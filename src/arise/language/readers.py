@@ -675,7 +675,8 @@ def read_position(
     )
     stretches = words_of(cast, mention)
     there = _from_there(cast, stretches)
-    cues = _position_cues(cast, mention, stretches, there)
+    # the place a "where" clause about it opens on tells its start, not what it does
+    cues = _position_cues(cast, mention, stretches + _place_it_is_in(cast, mention), there)
     if told is not None and not (
         told.value == RelativePosition.AHEAD_SAME_LANE.value
         and cues.best is not None
@@ -757,6 +758,29 @@ def read_position(
             else None
         ),
     )
+
+
+_WHERE = re.compile(r"[\s,]+where\s+$", re.I)
+#: At most this many words name the place a "where" clause opens on.
+_PLACE_WORDS = 12
+
+
+def _place_it_is_in(cast: Cast, mention: Mention) -> list[tuple[int, int]]:
+    """The place a "where" clause about `mention` opens on: "the van hides the cross street
+    on your right side, where a motorcyclist is trying to beat the red" (from the last
+    actor named before it)."""
+    text = cast.text
+    found = []
+    named = [s.end for m in cast.others for s in m.spans] + [s.end for s in cast.ego]
+    for span in mention.spans:
+        opened = phrase_start(text, span.start)
+        where = _WHERE.search(text, sentence_start(text, opened), opened)
+        if where is None or where.end() != opened:
+            continue
+        start = max([sentence_start(text, opened), *(e for e in named if e <= where.start())])
+        if len(text[start : where.start()].split()) <= _PLACE_WORDS:
+            found.append((start, where.start()))
+    return found
 
 
 def _position_cues(
