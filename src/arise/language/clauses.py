@@ -167,7 +167,14 @@ def _inverted_subject(
             between = cast.text[start : phrase_start(cast.text, span.start)]
             if len(between.split()) <= 10 and _motion_verb_before(cast, start, span):
                 return actor
+            if _FROM_PLACE.fullmatch(between):
+                return actor  # its verb left out: "..., and from the front one bus"
     return None
+
+
+#: Where a subject comes from, opening its clause with the verb left out ("and from front
+#: one bus which wants to turn").
+_FROM_PLACE = re.compile(r"\s*(?:and\s+|then\s+)?from\s+(?:the\s+)?[\w'-]+(?:\s+[\w'-]+)?\s*", re.I)
 
 
 def _motion_verb_before(cast: Cast, start: int, span: Span) -> re.Match[str] | None:
