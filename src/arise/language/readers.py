@@ -520,6 +520,9 @@ def _pronoun_means_another(cast: Cast, mention: Mention, hit: Hit) -> bool:
     return other_last > ego_last
 
 
+_DEMONSTRATIVES = frozenset({"", "that", "this", "those", "these"})
+
+
 def _named_after(cast: Cast, mention: Mention, at: int) -> Mention | None:
     """The other actor whose phrase starts right at `at` (spaces aside), or, for "it" or
     "them" there, the last other actor named before it."""
@@ -529,8 +532,8 @@ def _named_after(cast: Cast, mention: Mention, at: int) -> Mention | None:
             continue
         for span in other.spans:
             lead = phrase_start(text, span.start)
-            if lead >= at and not text[at:lead].strip():
-                return other
+            if lead >= at and text[at:lead].strip().lower() in _DEMONSTRATIVES:
+                return other  # "up the side of | that truck"
     if not _PRONOUN.match(text, at):
         return None
     before = [
@@ -600,8 +603,9 @@ def _by_another(cast: Cast, mention: Mention) -> GroundedFact | None:
                 position = _SIDED[RelativePosition.CROSSING_FROM_LEFT][_SIDE_OF[theirs]]
             elif hit.value in ("behind", "ahead") and not walker:
                 position = theirs  # behind a car ahead is ahead, behind an oncoming one oncoming
-            elif not walker and theirs is RelativePosition.ONCOMING:
-                position = theirs  # out from behind, past, beside or hidden by an oncoming one
+            elif not mention.cls.is_walker and theirs is RelativePosition.ONCOMING:
+                # out from behind, past, beside or hidden by an oncoming one (a rider too)
+                position = theirs
             if position is not None:
                 return GroundedFact(
                     name="spawn_position",
