@@ -379,3 +379,12 @@ def test_the_place_a_where_clause_opens_on_is_where_its_subject_is() -> None:
     ).facts
     assert facts["adversary_class"].value == "Bicycle"
     assert facts["spawn_position"].value == "crossing_road_from_left"
+
+
+def test_the_one_the_ego_runs_into_is_the_adversary() -> None:
+    reading = read_description(
+        "I was turning left. A lorry coming the other way stopped and flashed me across, "
+        "and a moped rider overtaking that lorry came on. My front wing hit his back wheel."
+    )
+    assert reading.facts["adversary_class"].value == "Motorcycle"
+    assert reading.facts["spawn_position"].value == "oncoming"

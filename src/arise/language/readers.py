@@ -1709,9 +1709,45 @@ def _meeting_rank(cast: Cast, mention: Mention, stretches: list[tuple[int, int]]
         if (hit := rulebook().first(Fact.MEETING, cast.text, a, b))
         and subject_of(cast, hit.start) is mention
     ]
+    meetings += _met_by_the_ego(cast, mention)
     if "contact" in meetings:
         return 0
     return 1 if meetings else 2
+
+
+#: A part of the ego as the subject of a meeting: "my front bumper hit ...".
+_EGO_PART = re.compile(r"\b(?:my|our|your)\s+(?:[\w-]+\s+)?[\w-]+\s+$", re.I)
+_OBJECT_PRONOUN = re.compile(r"\s+(him|her|his|it|its|them|their)\b", re.I)
+_OBJECT_LEAD = re.compile(r"(?:\s+[\w'-]+){0,3}?\s+", re.I)
+
+
+def _met_by_the_ego(cast: Cast, mention: Mention) -> list[str]:
+    """The meetings whose subject is the ego and whose object is `mention`: "my front bumper
+    hit his front wheel" of a cyclist named last before it, "the ego clipped the van"."""
+    text = cast.text
+    found = []
+    for hit in rulebook().hits(Fact.MEETING, text):
+        own_part = _EGO_PART.search(text, max(0, hit.start - 40), hit.start)
+        if subject_of(cast, hit.start) != "ego" and own_part is None:
+            continue
+        if pronoun := _OBJECT_PRONOUN.match(text, hit.end):
+            before = [
+                (span.end, other)
+                for other in cast.others
+                if not other.cls.is_place and not other.is_prop
+                for span in other.spans
+                if span.end <= hit.start
+            ]
+            if pronoun.group(1).lower() in ("him", "her", "his"):  # a person: walks or rides
+                people = [m for m in before if m[1].cls.is_walker or m[1].cls.is_two_wheeler]
+                before = people or before
+            met = max(before, key=lambda item: item[0])[1] if before else None
+        else:
+            lead = _OBJECT_LEAD.match(text, hit.end)
+            met = cast.mention_at(hit.end, (lead.end() if lead else hit.end) + 1)
+        if met is mention:
+            found.append(hit.value)
+    return found
 
 
 def is_vehicle(cls: str) -> bool:
