@@ -349,3 +349,8 @@ def test_the_ego_pronoun_with_a_verb_joined_on() -> None:
 def test_the_bike_after_a_motorcyclist_is_that_motorcycle() -> None:
     cast = parse("A motorcyclist runs the red; let the bike clear the junction.")
     assert [(m.cls.value, len(m.spans)) for m in cast.others] == [("Motorcycle", 2)]
+
+
+def test_the_van_driver_is_the_van() -> None:
+    cast = parse("A van waits at the stop line; catch the van driver's eye before you go.")
+    assert [(m.cls.value, len(m.spans)) for m in cast.others] == [("Van", 2)]

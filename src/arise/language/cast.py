@@ -74,6 +74,8 @@ _EGO_DRIVES = re.compile(
     r"(?:the|a|an|my|our)\s+(?:[\w'-]+\s+){0,2}$",
     re.I,
 )
+# The one at the wheel of a vehicle named right before ("the van driver"): that vehicle.
+_DRIVER = re.compile(r"(?:driver|rider|motorist)s?(?:['\u2019]s)?$", re.I)
 # A person on a bike is its rider, one road user with the bike: "a man on a pushbike".
 _RIDING = re.compile(r"^\s+(?:on|riding)\s+(?:a|an|his|her|their|the)\s+(?:[\w'-]+\s+){0,2}$", re.I)
 _RIDDEN = (ActorClass.BICYCLE, ActorClass.MOTORCYCLE)
@@ -423,7 +425,10 @@ def read_cast(text: str) -> Cast:
             continue
         following = re.match(r"[ -]+", text[end:])
         if kind == "noun" and following and end + following.end() in noun_starts:
-            continue
+            head = next(c for c in candidates if c[0] == end + following.end() and c[3] == "noun")
+            if not (cls.is_vehicle and _DRIVER.match(text[head[0] : head[1]])):
+                continue
+            taken.append((head[0], head[1]))  # "the van driver's eye": the van
         after = text[end:]
         if (
             kind in ("noun", "make")
