@@ -354,3 +354,11 @@ def test_the_bike_after_a_motorcyclist_is_that_motorcycle() -> None:
 def test_the_van_driver_is_the_van() -> None:
     cast = parse("A van waits at the stop line; catch the van driver's eye before you go.")
     assert [(m.cls.value, len(m.spans)) for m in cast.others] == [("Van", 2)]
+
+
+def test_a_thing_someone_carries_is_no_object_of_the_scene() -> None:
+    cast = parse("A man pushing two crates crosses; a crate lies in the lane.")
+    assert [(m.cls.value, m.quote) for m in cast.others] == [
+        ("Pedestrian", "A man"),
+        ("Box", "a crate"),
+    ]

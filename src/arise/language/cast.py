@@ -438,6 +438,8 @@ def read_cast(text: str) -> Cast:
             continue
         if kind == "noun" and _qualified(text[:start], lex.not_an_actor_after):
             continue  # "the junction box" is no box
+        if kind == "noun" and cls.is_prop and _carried(text[max(0, start - 40) : start]):
+            continue  # "a man carrying boxes": his load, not a thing on the road
         word = text[start:end]
         before = text[max(0, start - 40) : start]
         if kind == "noun" and cls is ActorClass.PEDESTRIAN and _crossing_as_a_place(before, after):
@@ -567,6 +569,15 @@ def _qualified(before: str, words: tuple[str, ...]) -> bool:
     """ "junction box": a word before the noun makes it a thing of the road, no actor."""
     found = re.search(r"([\w-]+)[\s-]+$", before)
     return bool(found and found.group(1).lower() in words)
+
+
+def _carried(before: str) -> bool:
+    """Whether a verb of carrying ends `before`, at most two words back ("carrying two
+    boxes", "pushing a pram")."""
+    return any(
+        re.fullmatch(r"(?:\s+[\w'-]+){0,2}\s+", before[found.end() :])
+        for found in class_pattern("carrying").finditer(before)
+    )
 
 
 def _named_makes(text: str) -> list[tuple[int, int, ActorClass, str]]:
