@@ -362,3 +362,8 @@ def test_a_thing_someone_carries_is_no_object_of_the_scene() -> None:
         ("Pedestrian", "A man"),
         ("Box", "a crate"),
     ]
+
+
+def test_the_party_the_writer_says_it_is_is_the_ego() -> None:
+    cast = parse("I am the claimant. The insured's van backed into the claimant's car.")
+    assert [(m.cls.value, m.quote) for m in cast.others] == [("Van", "The insured's van")]

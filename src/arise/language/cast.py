@@ -308,6 +308,10 @@ _INSURED = re.compile(
 _FIRST_PERSON = re.compile(r"^(?:i|we|my car|my vehicle|our car|our vehicle)$", re.I)
 
 
+#: The writer says which party it is: "I am the claimant", "I'm the insured".
+_SELF_PARTY = re.compile(
+    r"\b(?:i am|i'm|i was|we are|we were)\s+the\s+(claimant|insured|policyholder)\b", re.I
+)
 _POSSESSIVE = re.compile(r"['\u2019]s\b")
 _OWN_VEHICLE = re.compile(r"(?<=['\u2019]s)\s+(?:vehicle|car)\b(?![\s-]+park)", re.I)
 
@@ -332,8 +336,19 @@ def _ego_spans(text: str) -> list[Span]:
     ]
     # "I" only as a capital letter; "we"/"i" in lower case mid-word cannot occur (whole words)
     spans = [s for s in spans if text[s.start : s.end] != "i"]
-    if any(_FIRST_PERSON.match(text[s.start : s.end]) for s in spans):
+    self_party = _SELF_PARTY.search(text)
+    if any(_FIRST_PERSON.match(text[s.start : s.end]) for s in spans) and not (
+        self_party and self_party.group(1).lower() != "claimant"
+    ):
         spans = [s for s in spans if not _INSURED.match(text[s.start : s.end])]
+    if self_party is not None:
+        # "I am the claimant": the writer's party is the ego wherever it is named
+        word = re.escape(self_party.group(1))
+        spans += [
+            Span(*m.span())
+            for m in re.finditer(rf"\b(?:the\s+)?{word}(?:['\u2019]s)?\b", text, re.I)
+            if not _overlaps([(s.start, s.end) for s in spans], *m.span())
+        ]
     nhtsa = list(_NHTSA_EGO.finditer(text))
     if nhtsa:  # the typology's style: every bare "Vehicle" is the ego
         spans += [Span(*m.span()) for m in _NHTSA_EGO_ANYWHERE.finditer(text)]
