@@ -77,7 +77,9 @@ _EGO_DRIVES = re.compile(
 # The one at the wheel of a vehicle named right before ("the van driver"): that vehicle.
 _DRIVER = re.compile(r"(?:driver|rider|motorist)s?(?:['\u2019]s)?$", re.I)
 # A person on a bike is its rider, one road user with the bike: "a man on a pushbike".
-_RIDING = re.compile(r"^\s+(?:on|riding)\s+(?:a|an|his|her|their|the)\s+(?:[\w'-]+\s+){0,2}$", re.I)
+_RIDING = re.compile(
+    r"^\s+(?:on|riding)\s+(?:(?:a|an|his|her|their|the)\s+)?(?:[\w'-]+\s+){0,2}$", re.I
+)
 _RIDDEN = (ActorClass.BICYCLE, ActorClass.MOTORCYCLE)
 # Numbered parties of a report: "V1", "Vehicle 2", "Veh. 1", "Unit 1"; pedestrians "P1".
 _NUMBERED = re.compile(r"\b(?:V|Veh\.?\s?|Vehicle\s|Unit\s|Party\s)([1-9])\b(?:'s)?")
