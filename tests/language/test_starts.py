@@ -388,3 +388,15 @@ def test_the_one_the_ego_runs_into_is_the_adversary() -> None:
     )
     assert reading.facts["adversary_class"].value == "Motorcycle"
     assert reading.facts["spawn_position"].value == "oncoming"
+
+
+def test_a_walker_who_is_not_the_adversary_on_the_street_a_turning_ego_enters() -> None:
+    from arise.language.actors import read_actors
+
+    reading = read_description(
+        "You turn left at the lights behind a bus coming the other way. A man is crossing "
+        "from the far corner of the street you are turning into."
+    )
+    [man] = [a for a in read_actors(reading) if a.scenic_class == "Pedestrian"]
+    assert man.start is not None and man.start.value == "roadside_left"
+    assert man.start_detail is not None and man.start_detail.value == "exit_far_corner"

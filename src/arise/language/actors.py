@@ -16,6 +16,7 @@ from arise.language.facts import start_detail
 from arise.language.readers import (
     Reading,
     cue_before,
+    exit_street_walker,
     moves_in,
     read_start,
     read_stationary,
@@ -139,9 +140,14 @@ def read_actors(reading: Reading) -> list[CastActor]:
     found: list[CastActor] = []
     adversary = reading.adversary
     held = "ego_stopped" in reading.facts
+    maneuver = reading.facts.get("ego_maneuver")
     for mention in cast.others:
         if mention is not adversary:
             actor = read_actor(cast, mention)
+            walker = exit_street_walker(cast, mention, maneuver.value if maneuver else None)
+            if actor.start is None and walker is not None:
+                # "a woman is stepping off the far corner of the street you're turning into"
+                actor = replace(actor, start=walker.position, start_detail=walker.detail)
             if held and _queued_ahead(cast, mention, actor):
                 # "second in the queue behind a hatchback" at a red: it waits there too
                 actor = replace(actor, role=ActorRole.STOPPED, stationary=True)

@@ -1390,6 +1390,62 @@ def _waits_on_exit_street(
     return None
 
 
+@dataclass(frozen=True)
+class ExitStreetWalker:
+    """A walker or cyclist on the street a turning ego enters: the side it starts on (the
+    one the ego turns to), which corner, and the words that say so."""
+
+    position: RelativePosition
+    detail: StartDetail
+    quote: str
+    heading: Hit | None  # its compass heading, when that placed it
+
+
+def exit_street_walker(
+    cast: Cast, mention: Mention, ego_maneuver: str | None
+) -> ExitStreetWalker | None:
+    """Where a walker or cyclist crossing the street a turning ego enters starts: at the
+    corner on the side the ego turns to; the far corner when it comes from there or toward
+    the ego by compass ("walking south" of a northbound AV turning)."""
+    turn = {
+        EgoManeuver.TURN_RIGHT.value: RelativePosition.ROADSIDE_RIGHT,
+        EgoManeuver.TURN_LEFT.value: RelativePosition.ROADSIDE_LEFT,
+    }.get(ego_maneuver or "")
+    if turn is None or mention.cls not in (ActorClass.PEDESTRIAN, ActorClass.BICYCLE):
+        return None
+    book = rulebook()
+    text = cast.text
+    ego_bearing = _ego_bearing(cast)
+    for start, end in words_of(cast, mention):
+        far = book.first(Fact.FAR_CORNER, text, start, end)
+        street = book.first(Fact.EXIT_STREET, text, start, end)
+        quote = (
+            far.quote
+            if far
+            else street.quote
+            if street
+            else _exit_street_named(cast, text[start:end])
+        )
+        # A walker crossing along the ego's first bearing crosses the street it turns
+        # into; one coming toward the ego ("walking south" of a northbound AV) starts
+        # from that crossing's far corner.
+        heading = _own_heading(cast, start, end) if ego_bearing is not None else None
+        along = (
+            (_COMPASS[heading.value] - ego_bearing) % 360
+            if heading is not None and ego_bearing is not None
+            else None
+        )
+        if along not in (0, 180):
+            heading = None
+        elif quote is None:
+            quote = heading.quote if heading else None
+        if quote is not None and (far or book.first(Fact.CROSSES, text, start, end)):
+            toward = along == 180 and heading is not None
+            detail = StartDetail.EXIT_FAR_CORNER if far or toward else StartDetail.EXIT_CROSSING
+            return ExitStreetWalker(turn, detail, quote, heading)
+    return None
+
+
 def read_start_detail(reading: Reading) -> None:
     """Which end of the lane beside the ego the adversary starts at, or which corner of the
     street a turning ego enters; a walker on that street starts on the side the ego turns to."""
@@ -1398,55 +1454,31 @@ def read_start_detail(reading: Reading) -> None:
         return
     cast = reading.cast
     ego = reading.facts.get("ego_maneuver")
-    turn = {
-        EgoManeuver.TURN_RIGHT.value: RelativePosition.ROADSIDE_RIGHT,
-        EgoManeuver.TURN_LEFT.value: RelativePosition.ROADSIDE_LEFT,
-    }.get(ego.value if ego else "")
-    walker = adversary.cls in (ActorClass.PEDESTRIAN, ActorClass.BICYCLE)
+    walker = exit_street_walker(cast, adversary, ego.value if ego else None)
+    if walker is not None:
+        reading.facts["start_detail"] = GroundedFact(
+            name="start_detail",
+            value=walker.detail.value,
+            source=FactSource.TEXT,
+            quote=walker.quote,
+        )
+        told = reading.facts.get("spawn_position")
+        if (
+            told is None
+            or told.quote is None
+            or told.quote.lower() in walker.quote.lower()
+            or (walker.heading is not None and told.quote == walker.heading.quote)
+        ):
+            reading.facts["spawn_position"] = GroundedFact(
+                name="spawn_position",
+                value=walker.position.value,
+                source=FactSource.TEXT,
+                quote=walker.quote,
+            )
+        return
     book = rulebook()
     text = cast.text
-    ego_bearing = _ego_bearing(cast)
     for start, end in words_of(cast, adversary):
-        words = text[start:end]
-        if turn is not None and walker:
-            far = book.first(Fact.FAR_CORNER, text, start, end)
-            street = book.first(Fact.EXIT_STREET, text, start, end)
-            quote = (
-                far.quote if far else street.quote if street else _exit_street_named(cast, words)
-            )
-            # A walker crossing along the ego's first bearing crosses the street it turns
-            # into; one coming toward the ego ("walking south" of a northbound AV) starts
-            # from that crossing's far corner.
-            heading = _own_heading(cast, start, end) if ego_bearing is not None else None
-            along = (
-                (_COMPASS[heading.value] - ego_bearing) % 360
-                if heading is not None and ego_bearing is not None
-                else None
-            )
-            if along not in (0, 180):
-                heading = None
-            elif quote is None:
-                quote = heading.quote if heading else None
-            if quote is not None and (far or book.first(Fact.CROSSES, text, start, end)):
-                toward = along == 180 and heading is not None
-                detail = StartDetail.EXIT_FAR_CORNER if far or toward else StartDetail.EXIT_CROSSING
-                reading.facts["start_detail"] = GroundedFact(
-                    name="start_detail", value=detail.value, source=FactSource.TEXT, quote=quote
-                )
-                told = reading.facts.get("spawn_position")
-                if (
-                    told is None
-                    or told.quote is None
-                    or told.quote.lower() in quote.lower()
-                    or (heading is not None and told.quote == heading.quote)
-                ):
-                    reading.facts["spawn_position"] = GroundedFact(
-                        name="spawn_position",
-                        value=turn.value,
-                        source=FactSource.TEXT,
-                        quote=quote,
-                    )
-                return
         # "merged into its lane ahead of it": it ends up in front of the ego, unless it came
         # from behind first; "approaching from behind on the AV's right", "overtakes": it
         # starts behind the ego ("from behind a parked van" is where it hides instead).
