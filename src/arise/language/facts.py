@@ -30,6 +30,11 @@ class GroundedFact(BaseModel):
         return f'{self.name}: {self.value}  <- "{self.quote}"'
 
 
+def text_fact(name: str, value: str, quote: str | None) -> GroundedFact:
+    """A fact the words of the description say, with those words."""
+    return GroundedFact(name=name, value=value, source=FactSource.TEXT, quote=quote)
+
+
 class StartFact(GroundedFact):
     """Where an actor starts, with a finer point when the words give one (in the lane a
     turning ego enters), so that no later stage reads the words again to find it."""

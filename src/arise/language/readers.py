@@ -23,7 +23,7 @@ from arise.language.cast import (
     sentence_end,
     sentence_start,
 )
-from arise.language.facts import FactSource, GroundedFact, StartFact, start_detail
+from arise.language.facts import FactSource, GroundedFact, StartFact, start_detail, text_fact
 from arise.language.quotes import find_quote
 from arise.language.reading import parse
 from arise.language.rules import Fact, Hit, Target, rulebook
@@ -1456,12 +1456,7 @@ def read_start_detail(reading: Reading) -> None:
     ego = reading.facts.get("ego_maneuver")
     walker = exit_street_walker(cast, adversary, ego.value if ego else None)
     if walker is not None:
-        reading.facts["start_detail"] = GroundedFact(
-            name="start_detail",
-            value=walker.detail.value,
-            source=FactSource.TEXT,
-            quote=walker.quote,
-        )
+        reading.facts["start_detail"] = text_fact("start_detail", walker.detail.value, walker.quote)
         told = reading.facts.get("spawn_position")
         if (
             told is None
@@ -1469,11 +1464,8 @@ def read_start_detail(reading: Reading) -> None:
             or told.quote.lower() in walker.quote.lower()
             or (walker.heading is not None and told.quote == walker.heading.quote)
         ):
-            reading.facts["spawn_position"] = GroundedFact(
-                name="spawn_position",
-                value=walker.position.value,
-                source=FactSource.TEXT,
-                quote=walker.quote,
+            reading.facts["spawn_position"] = text_fact(
+                "spawn_position", walker.position.value, walker.quote
             )
         return
     book = rulebook()
@@ -1484,20 +1476,14 @@ def read_start_detail(reading: Reading) -> None:
         # starts behind the ego ("from behind a parked van" is where it hides instead).
         ahead = book.first(Fact.AHEAD_OF_EGO, text, start, end)
         if ahead is not None and not book.first(Fact.FROM_BEHIND, text, start, ahead.start):
-            reading.facts["start_detail"] = GroundedFact(
-                name="start_detail",
-                value=StartDetail.AHEAD.value,
-                source=FactSource.TEXT,
-                quote=ahead.quote,
+            reading.facts["start_detail"] = text_fact(
+                "start_detail", StartDetail.AHEAD.value, ahead.quote
             )
             return
         behind = book.first(Fact.FROM_BEHIND, text, start, end + 40)
         if behind is not None and behind.end <= end:
-            reading.facts["start_detail"] = GroundedFact(
-                name="start_detail",
-                value=StartDetail.FROM_BEHIND.value,
-                source=FactSource.TEXT,
-                quote=behind.quote,
+            reading.facts["start_detail"] = text_fact(
+                "start_detail", StartDetail.FROM_BEHIND.value, behind.quote
             )
             return
 
