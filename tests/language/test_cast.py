@@ -367,3 +367,8 @@ def test_a_thing_someone_carries_is_no_object_of_the_scene() -> None:
 def test_the_party_the_writer_says_it_is_is_the_ego() -> None:
     cast = parse("I am the claimant. The insured's van backed into the claimant's car.")
     assert [(m.cls.value, m.quote) for m in cast.others] == [("Van", "The insured's van")]
+
+
+def test_a_vehicle_in_the_ego_s_lane_is_not_its_own_vehicle() -> None:
+    cast = parse("In your lane a van stops suddenly, and I was in my lane a car length back.")
+    assert [m.quote for m in cast.others] == ["a van"]

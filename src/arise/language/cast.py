@@ -124,7 +124,7 @@ _A_VEHICLE = re.compile(r"\b(?:a|an|another|one)\s+(?:[\w-]+\s+){0,3}?vehicle\b"
 # one under test by what it is ("the automated car", "Automated shuttle van", "the test car").
 _OWN_OR_UNDER_TEST = re.compile(
     r"(?:\b(?:my|our|your)|(?:\b(?:the|an?)\s+)?\b(?:automated|autonomous|self-driving|"
-    r"driverless|test))\s+(?:[\w'-]+\s+){0,2}?$",
+    r"driverless|test))\s+(?:(?!(?:a|an|the|one|some|lane|road|street|way|side)\b)[\w'-]+\s+){0,2}?$",
     re.I,
 )
 _EGO_BODIES = frozenset({ActorClass.CAR, ActorClass.TRUCK, ActorClass.VAN, ActorClass.BUS})

@@ -1736,7 +1736,8 @@ def _meeting_rank(cast: Cast, mention: Mention, stretches: list[tuple[int, int]]
 #: A part of the ego as the subject of a meeting: "my front bumper hit ...".
 _EGO_PART = re.compile(r"\b(?:my|our|your)\s+(?:[\w-]+\s+)?[\w-]+\s+$", re.I)
 _OBJECT_PRONOUN = re.compile(r"\s+(him|her|his|it|its|them|their)\b", re.I)
-_OBJECT_LEAD = re.compile(r"(?:\s+[\w'-]+){0,3}?\s+", re.I)
+#: At most this many words between a meeting and its object ("hit the back of | a van").
+_OBJECT_WORDS = 3
 
 
 def _met_by_the_ego(cast: Cast, mention: Mention) -> list[str]:
@@ -1761,8 +1762,19 @@ def _met_by_the_ego(cast: Cast, mention: Mention) -> list[str]:
                 before = people or before
             met = max(before, key=lambda item: item[0])[1] if before else None
         else:
-            lead = _OBJECT_LEAD.match(text, hit.end)
-            met = cast.mention_at(hit.end, (lead.end() if lead else hit.end) + 1)
+            met = next(
+                (
+                    other
+                    for other in cast.others
+                    for span in other.spans
+                    if (lead := phrase_start(text, span.start)) >= hit.end
+                    and len(text[hit.end : lead].split()) <= _OBJECT_WORDS
+                    and not re.search(r"[.;,]", text[hit.end : lead])
+                ),
+                None,
+            )
+        if met is None and any(a <= hit.start < b for a, b in words_of(cast, mention)):
+            met = mention  # "a motorbike arrives very quick and almost we touch"
         if met is mention:
             found.append(hit.value)
     return found
