@@ -372,3 +372,8 @@ def test_the_party_the_writer_says_it_is_is_the_ego() -> None:
 def test_a_vehicle_in_the_ego_s_lane_is_not_its_own_vehicle() -> None:
     cast = parse("In your lane a van stops suddenly, and I was in my lane a car length back.")
     assert [m.quote for m in cast.others] == ["a van"]
+
+
+def test_a_list_after_the_ego_is_no_apposition() -> None:
+    cast = parse("The scene has the ego, a cyclist, and a van parked on the right.")
+    assert [m.quote for m in cast.others] == ["a cyclist", "a van"]

@@ -144,8 +144,13 @@ _PARTY_NOUNS = frozenset(
         "vehs",
     }
 )
-# What the ego is, set off after its name: "The AV, a 2026 Corvane Lumen, was travelling".
-_EGO_APPOSITION = re.compile(r"(?:\s*\([^()]{1,30}\))?,\s+(an?\s+[^,.;()]{1,60}?)\s*(?=,|\()")
+# What the ego is, set off after its name: "The AV, a 2026 Corvane Lumen, was travelling",
+# "V1 (a white SUV)".
+# Not one of a list: "the ego, a cyclist, and a van" (another item follows the comma).
+_EGO_APPOSITION = re.compile(
+    r"(?:\s*\([^()]{1,30}\))?\s*[,(]\s*(an?\s+[^,.;()]{1,60}?)\s*"
+    r"(?=,(?!\s*(?:and|or|a|an|the)\b)|\(|\))"
+)
 # A year and a capitalised name ("a 2017 Hollis Tern"), or a known make ("a white Subaru").
 _YEAR_NAME = re.compile(
     r"\b(?:19[5-9]\d|20[0-4]\d)\s+(?:[A-Z][\w-]*)(?:\s+(?:[A-Z0-9][\w-]*))?(?:\s+(?:[A-Z0-9][\w-]*))?"
@@ -523,7 +528,6 @@ def read_cast(text: str) -> Cast:
     found = _party_vehicles(text, found)
     found = _bracketed_descriptions(text, found)
     found = _heading_mentions(text, found)
-    found = _ego_appositions(text, ego, found)
     return Cast(text, tuple(ego), tuple(found), tuple(skipped))
 
 
@@ -787,18 +791,6 @@ def _heading_mentions(text: str, found: list[Mention]) -> list[Mention]:
             continue
         merged = later.with_span(named.spans[0])
         found = [merged if m is later else m for m in found if m is not named]
-    return found
-
-
-def _ego_appositions(text: str, ego: list[Span], found: list[Mention]) -> list[Mention]:
-    """ "V1, a 2019 ... in driverless mode, ...", "the AV (a white SUV)": the ego described,
-    not one more actor."""
-    for span in ego:
-        after = re.match(r"\s*[,(]\s*(?:a|an)\s+[^,;.()]{1,60}", text[span.end :])
-        if not after:
-            continue
-        start, end = span.end + after.start(), span.end + after.end()
-        found = [m for m in found if not (start <= m.start < end and len(m.spans) == 1)]
     return found
 
 
