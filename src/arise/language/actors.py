@@ -144,8 +144,9 @@ def read_actors(reading: Reading) -> list[CastActor]:
     for mention in cast.others:
         if mention is not adversary:
             actor = read_actor(cast, mention)
-            walker = exit_street_walker(cast, mention, maneuver.value if maneuver else None)
-            if actor.start is None and walker is not None:
+            if actor.start is None and (
+                walker := exit_street_walker(cast, mention, maneuver.value if maneuver else None)
+            ):
                 # "a woman is stepping off the far corner of the street you're turning into"
                 actor = replace(actor, start=walker.position, start_detail=walker.detail)
             if held and _queued_ahead(cast, mention, actor):

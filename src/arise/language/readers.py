@@ -677,15 +677,13 @@ def read_position(
         or _ego_verb_before(cast, mention, Fact.EGO_BEHIND)
         or (_squeezed_beside(cast, mention) if squeezed else None)
     )
+    if told is not None and told.value != RelativePosition.AHEAD_SAME_LANE.value:
+        return told
     stretches = words_of(cast, mention)
     there = _from_there(cast, stretches)
     # the place a "where" clause about it opens on tells its start, not what it does
     cues = _position_cues(cast, mention, stretches + _place_it_is_in(cast, mention), there)
-    if told is not None and not (
-        told.value == RelativePosition.AHEAD_SAME_LANE.value
-        and cues.best is not None
-        and cues.best.rank in cues.routed
-    ):
+    if told is not None and not (cues.best is not None and cues.best.rank in cues.routed):
         # ... but a turning ego that waits behind it ("hold back behind the lorry") meets it
         # where its own words put it, just round the corner
         return told
@@ -1727,7 +1725,7 @@ def _meeting_rank(cast: Cast, mention: Mention, stretches: list[tuple[int, int]]
         if (hit := rulebook().first(Fact.MEETING, cast.text, a, b))
         and subject_of(cast, hit.start) is mention
     ]
-    meetings += _met_by_the_ego(cast, mention)
+    meetings += _met_by_the_ego(cast, mention, stretches)
     if "contact" in meetings:
         return 0
     return 1 if meetings else 2
@@ -1740,9 +1738,10 @@ _OBJECT_PRONOUN = re.compile(r"\s+(him|her|his|it|its|them|their)\b", re.I)
 _OBJECT_WORDS = 3
 
 
-def _met_by_the_ego(cast: Cast, mention: Mention) -> list[str]:
-    """The meetings whose subject is the ego and whose object is `mention`: "my front bumper
-    hit his front wheel" of a cyclist named last before it, "the ego clipped the van"."""
+def _met_by_the_ego(cast: Cast, mention: Mention, stretches: list[tuple[int, int]]) -> list[str]:
+    """The meetings whose subject is the ego and whose object is `mention` (its words are
+    `stretches`): "my front bumper hit his front wheel" of a cyclist named last before it,
+    "the ego clipped the van"."""
     text = cast.text
     found = []
     for hit in rulebook().hits(Fact.MEETING, text):
@@ -1773,7 +1772,7 @@ def _met_by_the_ego(cast: Cast, mention: Mention) -> list[str]:
                 ),
                 None,
             )
-        if met is None and any(a <= hit.start < b for a, b in words_of(cast, mention)):
+        if met is None and any(a <= hit.start < b for a, b in stretches):
             met = mention  # "a motorbike arrives very quick and almost we touch"
         if met is mention:
             found.append(hit.value)
