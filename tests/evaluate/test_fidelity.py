@@ -431,6 +431,7 @@ def test_the_dev_sets_load_and_validate() -> None:
         DevSet.FRESH3: 42,
         DevSet.FRESH4: 36,
         DevSet.FRESH5: 40,
+        DevSet.FRESH6: 40,
         DevSet.PLACEMENT: 20,
     }
     assert sum(counts.values()) >= 66

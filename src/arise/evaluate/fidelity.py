@@ -97,6 +97,8 @@ class DevSet(StrEnum):
     FRESH4 = "fresh4"
     # a fifth probe, written 2026-11-29, five per paper category, first scored by the lead
     FRESH5 = "fresh5"
+    # a sixth probe, written 2026-11-30 by a helper that read no reader, first scored by the lead
+    FRESH6 = "fresh6"
     # placement probes of our own: two roles, parked and stalled, lanes beside the ego
     PLACEMENT = "placement"
     # tests/heldapart: measured only, never tuned on (its README states the rule)
@@ -114,6 +116,7 @@ DEVSET_FILES: dict[DevSet, str] = {
     DevSet.FRESH3: "fresh3.jsonl",
     DevSet.FRESH4: "fresh4.jsonl",
     DevSet.FRESH5: "fresh5.jsonl",
+    DevSet.FRESH6: "fresh6.jsonl",
     DevSet.PLACEMENT: "placement.jsonl",
 }
 
