@@ -79,6 +79,18 @@ CASES = {
             max_repairs=1,
             extra=NO_GATE,
         ),
+        # A description of the dev set fresh6 (f6-dt-1) on which the model's extraction ran
+        # into the token limit inside a string (2026-11-30): the rules' reading stands in.
+        Case(
+            "runaway_reply",
+            "Picture yourself halfway down a tight residential road with houses on both "
+            "sides, doing about 20 mph. Three cars are parked nose to tail along the kerb on "
+            "your nearside. A football bounces out from between the second and third of "
+            "them, and a boy of about eight runs out after it into your path. Could you "
+            "stop in time? Cover the brake whenever you pass parked cars near homes, and "
+            "leave at least a door's width between you and them. Where there's a ball, "
+            "there's usually a child.",
+        ),
         Case(
             "single_pass",
             "The ego turns left at an intersection while an oncoming car goes straight through.",

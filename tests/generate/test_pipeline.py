@@ -127,3 +127,23 @@ def test_rejected_simulations_are_resampled_within_the_spawn_budget(validator_po
     result = check_text(text, CheckOptions(seed=1, spawn_attempts=15), pool=validator_pool)
     assert result.ok and result.spawn_attempts_used > 1
     assert result.simulation_rejections and result.simulation_rejections[0].line == 30
+
+
+@pytest.mark.slow
+def test_a_reply_cut_off_at_the_token_limit_gives_way_to_the_rules_reading(
+    tmp_path, validator_pool
+) -> None:
+    """Recorded: the model's extraction ran into its token limit inside a string. It is not
+    re-asked (the same limit cuts it again), and the rules' reading makes the scenario."""
+    run = _run("runaway_reply", tmp_path, validator_pool)
+    assert run.ok, run.message
+    report = _report(tmp_path)
+    calls = report["llm_calls"]
+    assert [c["label"] for c in calls] == ["extract"]
+    assert calls[0]["usage"]["completion_tokens"] == 600  # the whole budget, cut off
+    [note] = [n for n in report["spec_corrections"] if "the model's answer was unusable" in n]
+    assert "after 1 attempt(s)" in note
+    # the rules read the boy who runs out after the ball, and the cars parked on the nearside
+    assert report["spec"]["adversary_type"] == "pedestrian"
+    parked = report["spec"]["actors"][0]
+    assert (parked["scenic_class"], parked["count"], parked["start"]) == ("Car", 3, "roadside_left")

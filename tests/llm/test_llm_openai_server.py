@@ -151,3 +151,17 @@ def test_cli_ping_names_the_server_model(llama_server: str) -> None:
     assert result.stdout.startswith("llamacpp (local) answered")
     assert "server has qwen-local" in result.stdout
     assert "prompt +" in result.stdout
+
+
+def test_a_reply_cut_off_at_the_token_limit_is_not_re_asked(llama_server: str) -> None:
+    """Three tokens cannot hold the object: the same limit would cut every re-ask too."""
+    llm = get_provider(
+        "llamacpp", base_url=llama_server, cache=False, retry=RetryPolicy(attempts=1)
+    )
+    llm.max_reasks = 2
+    with pytest.raises(StructuredOutputFailed) as info:
+        llm.complete([user('Return {"word": "HELLO"}')], max_tokens=3, schema=Shout)
+    failure = info.value
+    assert failure.attempts == 1 and len(llm.calls) == 1
+    assert "cut off at the token limit" in failure.errors[-1]
+    llm.close()

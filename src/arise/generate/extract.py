@@ -11,7 +11,7 @@ from arise.language.condense import condense
 from arise.language.readers import Reading, read_description
 from arise.language.sense import is_about_traffic, self_contradictions
 from arise.llm.base import BaseProvider
-from arise.llm.types import Message
+from arise.llm.types import Message, StructuredOutputFailed
 from arise.prompts import load, load_jsonl
 
 MAX_DESCRIPTION_CHARS = 2000
@@ -62,6 +62,11 @@ def extraction_messages(description: str) -> list[Message]:
 
 #: The note a run carries when the fixed rules read the description without the model.
 READ_BY_RULES = "extraction: the fixed rules read the adversary and its start; no model call"
+#: The note a run carries when the model's answer never parsed and the rules' reading stood in.
+MODEL_ANSWER_UNUSABLE = (
+    "extraction: the model's answer was unusable, so the fixed rules' reading was used, "
+    "with neutral defaults for what it leaves open"
+)
 
 
 def extract_spec(
@@ -76,7 +81,8 @@ def extract_spec(
     When the fixed rules alone read who the adversary is and where it starts (or that there
     is none), the model is not asked unless `ask_model`: grounding would overrule its
     answers on those facts anyway, and the call is most of a run's time.
-    Provider failures propagate (the caller records them); bad input does not."""
+    A reply that never parses gives way to the rules' reading; other provider failures
+    propagate (the caller records them); bad input does not."""
     refusal = check_description(description)
     if refusal:
         return Extraction(error=refusal)
@@ -92,19 +98,28 @@ def extract_spec(
                 notes=[READ_BY_RULES, *grounded.notes],
                 ignored=condensed.ignored,
             )
-    completion = provider.complete(
-        extraction_messages(condensed.text),
-        temperature=temperature,
-        max_tokens=600,
-        schema=ExtractionAnswer,
-        seed=seed,
-    )
-    answer = completion.parsed
-    assert isinstance(answer, ExtractionAnswer)
+    notes: list[str] = []
+    try:
+        completion = provider.complete(
+            extraction_messages(condensed.text),
+            temperature=temperature,
+            max_tokens=600,
+            schema=ExtractionAnswer,
+            seed=seed,
+        )
+    except StructuredOutputFailed as failure:
+        # The rules' reading with neutral defaults for what it leaves open is a scenario
+        # of the description; an error instead would lose the run for a model's slip.
+        answer = answer_from_reading(reading, partial=True)
+        assert answer is not None
+        notes.append(f"{MODEL_ANSWER_UNUSABLE} ({failure})")
+    else:
+        answer = completion.parsed
+        assert isinstance(answer, ExtractionAnswer)
     grounded = ground(condensed.text, answer, reading)
     return Extraction(
         spec=grounded.spec,
         contradictions=find_contradictions(reading),
-        notes=grounded.notes,
+        notes=[*notes, *grounded.notes],
         ignored=condensed.ignored,
     )

@@ -141,15 +141,16 @@ def _participants(reading: Reading) -> list[str]:
     return found
 
 
-def answer_from_reading(reading: Reading) -> ExtractionAnswer | None:
+def answer_from_reading(reading: Reading, *, partial: bool = False) -> ExtractionAnswer | None:
     """The answer the model would be asked for, from the fixed rules alone: when they read
     the adversary and where it starts, or that no road user is named; else None (the model
-    must be asked). Free text is the description's own words about each part."""
+    must be asked), unless `partial` (no model answer to be had): then neutral defaults
+    fill what they leave open. Free text is the description's own words about each part."""
     cast = reading.cast
     facts = reading.facts
     road_users = [m for m in cast.others if adversary_type_of(m.cls) is not None]
     adversary = reading.adversary
-    if road_users and (adversary is None or "spawn_position" not in facts):
+    if not partial and road_users and (adversary is None or "spawn_position" not in facts):
         return None
 
     def value(name: str, default: str) -> str:

@@ -120,6 +120,10 @@ def parse_reply(text: str, model: type[BaseModel]) -> BaseModel:
     return model.model_validate_json(body)
 
 
+#: The finish reasons of a reply stopped by the token limit (OpenAI and llama.cpp, Anthropic).
+CUT_OFF = frozenset({"length", "max_tokens"})
+
+
 def complete_structured(
     provider: BaseProvider,
     request: Request,
@@ -150,8 +154,13 @@ def complete_structured(
             parsed = parse_reply(reply.text, model)
         except (ValidationError, ValueError) as exc:
             problem = describe_error(exc)
-            errors.append(problem)
             messages.append(assistant(reply.text))
+            if reply.finish_reason in CUT_OFF:
+                # A reply that ran into the token limit (a string that never closes) comes
+                # back the same when re-asked with the same limit: minutes for nothing.
+                errors.append(f"{problem}\n- the reply was cut off at the token limit")
+                break
+            errors.append(problem)
             if attempts < allowed:  # the transcript ends with the last reply, not an unsent ask
                 messages.append(user(template("reask.txt").format(errors=problem)))
             continue
