@@ -20,6 +20,7 @@ import re
 from dataclasses import dataclass, field, replace
 from functools import cache
 
+from arise.language.generic import lessons_of
 from arise.language.lexicon import class_pattern, lexicon, noun_class
 from arise.vocabulary import ActorClass
 
@@ -46,7 +47,7 @@ _NEW = re.compile(r"\b(?:a|an|another|second|third|one|some|other)\s+(?:[\w'-]+[
 _DEFINITE = re.compile(r"\b(?:the|that|this|its|their|his|her)\s+(?:[\w'-]+[- ]){0,3}$", re.I)
 # "both vehicles", "no other vehicle": a summary or a negation, not one more thing.
 _NOT_NEW_THING = re.compile(
-    r"\b(?:both|all|neither|either|no|any|none of the|no one|nobody|each)\s+"
+    r"\b(?:both|all|neither|either|no|any|none of the|no one|nobody|each|(?:empty|free|devoid) of)\s+"
     r"(?:other\s+)?(?:\w+\s+)?$",
     re.I,
 )
@@ -512,6 +513,8 @@ def read_cast(text: str) -> Cast:
                 found[index] = replace(found[index], cls=cls)  # "their van": a van
             continue
         plural = _is_plural(word, cls)
+        if kind == "noun" and _a_kind(text, start, plural and not count_match):
+            continue  # "whenever you pass parked cars", "experienced drivers": no actor
         counted = bool(count_match) or not (plural or _GROUP.search(before))
         if count == 1 and plural and cls is not ActorClass.PEDESTRIAN:
             count = 2 if not count_match else count
@@ -529,6 +532,21 @@ def read_cast(text: str) -> Cast:
     found = _bracketed_descriptions(text, found)
     found = _heading_mentions(text, found)
     return Cast(text, tuple(ego), tuple(found), tuple(skipped))
+
+
+def _a_kind(text: str, start: int, bare_plural: bool) -> bool:
+    """Whether the phrase at `start`, naming a road user for the first time, names a kind
+    rather than one in the scene: in a lesson, or as a plural with no number in an order
+    to the reader, or as drivers at large (`language.generic`)."""
+    lessons = lessons_of(text)
+    if lessons.in_lesson(start):
+        return True
+    if not bare_plural:
+        return False
+    if lessons.in_order(start):
+        return True
+    kind = class_pattern("road_user_kind").match(text, start)
+    return kind is not None and not _DEFINITE.search(text[max(0, start - 40) : start])
 
 
 def _owner_of(text: str, vehicle: Mention, start: int) -> bool:

@@ -23,6 +23,7 @@ from arise.language.cast import (
     sentence_end,
     sentence_start,
 )
+from arise.language.generic import lessons_of
 from arise.language.facts import FactSource, GroundedFact, StartFact, start_detail, text_fact
 from arise.language.quotes import find_quote
 from arise.language.reading import parse
@@ -1789,7 +1790,8 @@ def read_description(description: str, adversary_quote: str | None = None) -> Re
     cast = parse(description)
     reading = Reading(cast=cast)
     reading.adversary = choose_adversary(cast, adversary_quote)
-    reading.weather = read_weather(description)
+    # "In wet weather give more room": a lesson's weather is no scene's
+    reading.weather = read_weather(lessons_of(description).masked(description))
     reading.facts["weather"] = reading.weather.fact
     if reading.adversary is not None:
         adversary = reading.adversary
