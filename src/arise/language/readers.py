@@ -23,8 +23,8 @@ from arise.language.cast import (
     sentence_end,
     sentence_start,
 )
-from arise.language.generic import lessons_of
 from arise.language.facts import FactSource, GroundedFact, StartFact, start_detail, text_fact
+from arise.language.generic import lessons_of
 from arise.language.quotes import find_quote
 from arise.language.reading import parse
 from arise.language.rules import Fact, Hit, Target, rulebook
