@@ -21,7 +21,7 @@ from dataclasses import dataclass, field, replace
 from functools import cache
 
 from arise.language.generic import lessons_of
-from arise.language.lexicon import class_pattern, lexicon, noun_class
+from arise.language.lexicon import class_pattern, lexicon, not_after_abbreviation, noun_class
 from arise.vocabulary import ActorClass
 
 PROP_NOUN_CLASSES = frozenset(cls for cls in ActorClass if cls.is_prop)
@@ -146,17 +146,22 @@ _PARTY_NOUNS = frozenset(
     }
 )
 # What the ego is, set off after its name: "The AV, a 2026 Corvane Lumen, was travelling",
-# "V1 (a white SUV)".
+# "V1 (a white SUV)", "V1 (2026 Ambrel Tek, operating autonomously)".
 # Not one of a list: "the ego, a cyclist, and a van" (another item follows the comma).
 _EGO_APPOSITION = re.compile(
-    r"(?:\s*\([^()]{1,30}\))?\s*[,(]\s*(an?\s+[^,.;()]{1,60}?)\s*"
+    r"(?:\s*\([^()]{1,30}\))?\s*[,(]\s*((?:an?\s+|(?:19|20)\d\d\s+)[^,.;()]{1,60}?)\s*"
     r"(?=,(?!\s*(?:and|or|a|an|the)\b)|\(|\))"
 )
 # A year and a capitalised name ("a 2017 Hollis Tern"), or a known make ("a white Subaru").
 _YEAR_NAME = re.compile(
     r"\b(?:19[5-9]\d|20[0-4]\d)\s+(?:[A-Z][\w-]*)(?:\s+(?:[A-Z0-9][\w-]*))?(?:\s+(?:[A-Z0-9][\w-]*))?"
 )
-_SENTENCE = re.compile(r"[.;!?](?:\s|$)")
+
+
+@cache
+def _sentence_stop() -> re.Pattern[str]:
+    """A stop that ends a sentence: not one after a short form ("unprot. LT")."""
+    return re.compile(rf"{not_after_abbreviation()}[.;!?](?:\s|$)")
 
 
 @dataclass(frozen=True)
@@ -272,13 +277,13 @@ class Cast:
 
 def sentence_start(text: str, position: int) -> int:
     """Where the sentence holding `position` starts."""
-    ends = [m.end() for m in _SENTENCE.finditer(text, 0, position)]
+    ends = [m.end() for m in _sentence_stop().finditer(text, 0, position)]
     return ends[-1] if ends else 0
 
 
 def sentence_end(text: str, position: int) -> int:
     """Where the sentence holding `position` ends (a stop followed by a space, or the end)."""
-    found = _SENTENCE.search(text, position)
+    found = _sentence_stop().search(text, position)
     return found.start() if found else len(text)
 
 

@@ -16,18 +16,26 @@ after, before, until, because, which, that, who). Its subject is:
 from __future__ import annotations
 
 import re
+from functools import cache
 
 from arise.language.cast import Cast, Clause, Mention, Span, phrase_start
-from arise.language.lexicon import class_pattern
+from arise.language.lexicon import class_pattern, not_after_abbreviation
 
 Actor = Mention | str  # a Mention, or "ego"
 
-_BOUNDARY = re.compile(
-    r"[,;:()]|\.(?=\s|$)|[!?]|(?<=\s)[-=]>(?=\s)"  # "... ahead -> ego LC left": then
-    r"|\b(?:and then|and|then|but|while|whilst|when|as|after|before|until|because|so that|"
-    r"which|that|who|whereupon)\b",
-    re.I,
-)
+
+@cache
+def _boundary() -> re.Pattern[str]:
+    """Where a clause may end: punctuation (not the stop of a short form, "unprot. LT"),
+    an arrow, or a word that joins clauses."""
+    return re.compile(
+        rf"[,;:()]|{not_after_abbreviation()}\.(?=\s|$)|[!?]|(?<=\s)[-=]>(?=\s)"
+        r"|\b(?:and then|and|then|but|while|whilst|when|as|after|before|until|because|"
+        r"so that|which|that|who|whereupon)\b",
+        re.I,
+    )
+
+
 _RELATIVE = frozenset({"which", "that", "who"})
 _BETWEEN = re.compile(r"\bbetween\b(?!.*\band\b)", re.I)
 _SENTENCE_END = frozenset({".", "!", "?", ";"})
@@ -236,7 +244,7 @@ def read_clauses(cast: Cast) -> list[Clause]:
     text = cast.text
     spans = _spans(cast)
     cuts: list[tuple[int, int, str]] = [(0, 0, "")]
-    for match in _BOUNDARY.finditer(text):
+    for match in _boundary().finditer(text):
         word = match.group(0).lower()
         if word == "and" and _BETWEEN.search(text, cuts[-1][1], match.start()):
             continue  # "between the ego and the van" joins two places, not two clauses

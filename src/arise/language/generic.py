@@ -15,9 +15,8 @@ import re
 from dataclasses import dataclass
 from functools import cache
 
-from arise.language.lexicon import class_pattern
+from arise.language.lexicon import class_pattern, not_after_abbreviation
 
-_SENTENCE = re.compile(r"[^.!?;]+(?:[.!?;]+|$)")
 #: A short phrase of time, place or condition before an order ("In wet weather give ...",
 #: "Before any right turn, check ...", "At night, slow down"): its first word.
 _FRONTED = re.compile(r"\s*(?:in|on|at|before|after|during|with|for|near|approaching|when)\s", re.I)
@@ -82,8 +81,8 @@ def lessons_of(text: str) -> Lessons:
     lessons: list[tuple[int, int]] = []
     orders: list[tuple[int, int]] = []
     marker = class_pattern("generic")
-    for sentence in _SENTENCE.finditer(text):
-        start, end = sentence.span()
+    stops = [m.end() for m in re.finditer(rf"{not_after_abbreviation()}[.!?;]+", text)]
+    for start, end in zip([0, *stops], [*stops, len(text)], strict=True):
         if marker.search(text, start, end):
             lessons.append((start, end))
         elif _opens_with_order(text, start, end):

@@ -110,3 +110,11 @@ def class_pattern(name: str) -> re.Pattern[str]:
     """The phrases of one word class as a regex (`ego`, `side`, ...), built once: the
     clause reader asks for one per clause."""
     return compile_pattern(f"@{name}", lexicon().classes)
+
+
+@cache
+def not_after_abbreviation() -> str:
+    """A regex guard for a stop that ends a sentence: not the stop of a short form of the
+    lexicon class `abbreviation` ("unprot. LT", "approx. 30 m"), which ends no sentence."""
+    words = lexicon().classes["abbreviation"]
+    return "".join(rf"(?<!\b{re.escape(word)})(?<!\b{re.escape(word.title())})" for word in words)

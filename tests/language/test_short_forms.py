@@ -1,0 +1,22 @@
+"""Terse notes: the stop of a short form ends no sentence; a year opens an apposition."""
+
+from __future__ import annotations
+
+from arise.language.cast import read_cast, sentence_end
+from arise.language.readers import read_description
+
+
+def test_the_stop_of_a_short_form_ends_no_sentence() -> None:
+    text = "AV SB, approx. 20 mph, unprot. LT at lights. Moped opp. lane runs red."
+    assert text[: sentence_end(text, 0)] == "AV SB, approx. 20 mph, unprot. LT at lights"
+    assert read_description(text).facts["ego_maneuver"].value == "turn_left"
+
+
+def test_a_model_year_after_the_egos_name_is_the_ego() -> None:
+    text = (
+        "V1 (2025 Pellor Ardent, driving itself) was northbound. V2, a 2014 Orsk van, "
+        "came south and turned across V1."
+    )
+    cast = read_cast(text)
+    assert [text[s.start : s.end] for s in cast.ego] == ["V1", "2025 Pellor Ardent", "V1"]
+    assert [m.quote for m in cast.others] == ["V2"]
