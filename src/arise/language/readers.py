@@ -494,6 +494,8 @@ def _ego_named_in(cast: Cast, clause: Clause) -> bool:
     )
 
 
+#: The ego as the writer or the reader: "it" or "him" after it is someone else.
+_SPEAKING = frozenset({"i", "me", "we", "us", "you"})
 _HIDDEN_BY = re.compile(r"\b(?:hidden|hiding|concealed|obscured|masked|screened)\s+$", re.I)
 
 
@@ -506,6 +508,9 @@ def _pronoun_means_another(cast: Cast, mention: Mention, hit: Hit) -> bool:
         return False
     if _HIDDEN_BY.search(cast.text, max(0, hit.start - 30), hit.start):
         return True  # "hidden behind it": nothing hides from the ego behind the ego
+    said = [s for s in cast.ego if s.end <= hit.start]
+    if said and cast.text[said[-1].start : said[-1].end].lower() in _SPEAKING:
+        return True  # "you see a van, and behind it you make out ...": "it" is not "you"
     before = [c for c in cast.clauses if c.start <= hit.start]
     for clause in reversed(before):
         if clause.subject is None or clause.subject is mention:
@@ -879,7 +884,8 @@ def _on_the_road_entered(
     on_route: bool,
 ) -> tuple[list[_Cue], list[_Cue]]:
     """Cues on the road a turning ego enters: one coming toward the junction along it comes
-    from the side the ego turns to; else the side of that road, not a lane beside the ego."""
+    from the side the ego turns to, or from the side told; else the side of that road, not
+    a lane beside the ego."""
     toward = next(
         (cue for cue in [*cues, *weak] if cue.position is RelativePosition.ONCOMING), None
     )
@@ -890,6 +896,12 @@ def _on_the_road_entered(
         routed_quote = next(cue.quote for cue in cues if cue.rank in routed)
         routed.clear()
         return [toward._replace(position=from_side, quote=f"{toward.quote} ... {routed_quote}")], []
+    crossing = [cue for cue in cues if cue.position in CROSSING_STARTS]
+    if on_route and crossing:
+        # "approaching from SV's left, in the lane SV is entering": coming along that road
+        # from the side told, not standing in it
+        routed.clear()
+        return crossing, weak
     if on_route:
         # "double-parked just past the corner on the right": the side of the road the ego
         # turns into; a kerb said still holds ("parked at the kerb just round the corner").
