@@ -377,3 +377,13 @@ def test_a_vehicle_in_the_ego_s_lane_is_not_its_own_vehicle() -> None:
 def test_a_list_after_the_ego_is_no_apposition() -> None:
     cast = parse("The scene has the ego, a cyclist, and a van parked on the right.")
     assert [m.quote for m in cast.others] == ["a cyclist", "a van"]
+
+
+def test_the_writers_vehicle_named_again_is_the_ego() -> None:
+    cast = parse("I was driving the van of my firm at the lights. I stopped the van just short.")
+    assert cast.others == ()
+
+
+def test_a_party_described_as_a_walker_is_that_walker() -> None:
+    cast = parse("The claimant, an old man with a stick, was on foot in the crosswalk.")
+    assert [(m.cls.value, m.quote) for m in cast.others] == [("Pedestrian", "The claimant")]

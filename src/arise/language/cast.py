@@ -75,6 +75,8 @@ _EGO_DRIVES = re.compile(
     r"(?:the|a|an|my|our)\s+(?:[\w'-]+\s+){0,2}$",
     re.I,
 )
+# The writer's own vehicle named again: "I was driving the car ... I stopped the car".
+_THE_OWN = re.compile(r"\b(?:the|my|our)\s+$", re.I)
 # The one at the wheel of a vehicle named right before ("the van driver"): that vehicle.
 _DRIVER = re.compile(r"(?:driver|rider|motorist)s?(?:['\u2019]s)?$", re.I)
 # A person on a bike is its rider, one road user with the bike: "a man on a pushbike".
@@ -437,6 +439,7 @@ def read_cast(text: str) -> Cast:
     # phrase is one thing, named by its head, the last noun.
     noun_starts = {start for start, _, _, kind in candidates if kind == "noun"}
     rider: Span | None = None  # a rider just named, whose bike follows ("a man on a bike")
+    driven: set[str] = set()  # the nouns the writer's own vehicle was named by
     for at, (start, end, cls, kind) in enumerate(candidates):
         if _overlaps(taken, start, end):
             continue
@@ -479,6 +482,11 @@ def read_cast(text: str) -> Cast:
             continue
         if kind in ("noun", "make") and cls in VEHICLE_CLASSES and _EGO_DRIVES.search(before):
             skipped.append(word)
+            taken.append((start, end))
+            driven.add(word.lower())
+            continue
+        if kind == "noun" and word.lower() in driven and _THE_OWN.search(before):
+            skipped.append(word)  # "I was driving the car ... I stop the car": the same one
             taken.append((start, end))
             continue
         if kind == "make" and _noun_follows(text, end):
@@ -687,8 +695,9 @@ def _generic_descriptions(text: str, found: list[Mention]) -> list[Mention]:
     "the third party, a man on a pushbike" is the pushbike)."""
     for mention in list(found):
         first = mention.spans[0]
-        if mention not in found or not _GENERIC_HEAD.search(text[first.start : first.end]):
-            continue
+        generic = _GENERIC_HEAD.search(text[first.start : first.end]) or _is_party(mention)
+        if mention not in found or not generic:
+            continue  # "the claimant, a man carrying bags": a party too
         after = _GENERIC_APPOSITION.match(text[first.end :])
         if not after:
             continue

@@ -1149,7 +1149,16 @@ def _ego_bearing(cast: Cast) -> int | None:
         # In the ego's own words: up to the next actor named or the end of the sentence
         # ("V1 entered the intersection of A Street and 9th Avenue eastbound").
         until = min([s for s in others if s > span.end] + [sentence_end(cast.text, span.end)])
-        found = _heading(cast.text, span.end, min(until, span.end + 120))
+        found = next(
+            (  # "she was driving the insured vehicle north": the ego inside the words
+                hit
+                for hit in rulebook().hits(
+                    Fact.HEADING, cast.text, sentence_start(cast.text, span.start), until
+                )
+                if hit.start < span.start and hit.end >= span.end
+            ),
+            None,
+        ) or _heading(cast.text, span.end, min(until, span.end + 120))
         opener = _fronted_participle(cast, phrase_start(cast.text, span.start))
         if opener is not None and found is None:  # "Heading south on Pike Road, the AV ..."
             found = _heading(cast.text, *opener)
@@ -1427,8 +1436,14 @@ def exit_street_walker(
     book = rulebook()
     text = cast.text
     ego_bearing = _ego_bearing(cast)
-    for start, end in words_of(cast, mention):
-        far = book.first(Fact.FAR_CORNER, text, start, end)
+    stretches = words_of(cast, mention)
+    # "crosses the street I turn into; she comes from the corner on the far side": the far
+    # corner may be said in another of its clauses
+    far_said = next(
+        (hit for s, e in stretches if (hit := book.first(Fact.FAR_CORNER, text, s, e))), None
+    )
+    for start, end in stretches:
+        far = book.first(Fact.FAR_CORNER, text, start, end) or far_said
         street = book.first(Fact.EXIT_STREET, text, start, end)
         quote = (
             far.quote
@@ -1457,6 +1472,9 @@ def exit_street_walker(
     return None
 
 
+_KERBS = frozenset({RelativePosition.ROADSIDE_LEFT.value, RelativePosition.ROADSIDE_RIGHT.value})
+
+
 def read_start_detail(reading: Reading) -> None:
     """Which end of the lane beside the ego the adversary starts at, or which corner of the
     street a turning ego enters; a walker on that street starts on the side the ego turns to."""
@@ -1474,6 +1492,8 @@ def read_start_detail(reading: Reading) -> None:
             or told.quote is None
             or told.quote.lower() in walker.quote.lower()
             or (walker.heading is not None and told.quote == walker.heading.quote)
+            # "from the far side": a kerb of the street it crosses, the one the ego enters
+            or told.value in _KERBS
         ):
             reading.facts["spawn_position"] = text_fact(
                 "spawn_position", walker.position.value, walker.quote
