@@ -20,3 +20,12 @@ def test_a_model_year_after_the_egos_name_is_the_ego() -> None:
     cast = read_cast(text)
     assert [text[s.start : s.end] for s in cast.ego] == ["V1", "2025 Pellor Ardent", "V1"]
     assert [m.quote for m in cast.others] == ["V2"]
+
+
+def test_what_the_ego_is_may_follow_under_test_and_end_its_sentence() -> None:
+    text = (
+        "Unit 1, the autonomous vehicle under test, a 2025 Ostry Vale, followed Unit 2. "
+        "V1 is the self-driving prototype under evaluation, a 2026 Lumo Brisk with a driver."
+    )
+    cast = read_cast(text)
+    assert [m.quote for m in cast.others] == ["Unit 2"]

@@ -148,11 +148,16 @@ _PARTY_NOUNS = frozenset(
     }
 )
 # What the ego is, set off after its name: "The AV, a 2026 Corvane Lumen, was travelling",
-# "V1 (a white SUV)", "V1 (2026 Ambrel Tek, operating autonomously)".
+# "V1 (a white SUV)", "V1 (2026 Ambrel Tek, operating autonomously)", "the autonomous vehicle
+# under test, a 2026 Caddow Fenn".
 # Not one of a list: "the ego, a cyclist, and a van" (another item follows the comma).
+_NOT_A_LIST = r"(?:,(?!\s*(?:and|or|a|an|the)\b)|\(|\))"
 _EGO_APPOSITION = re.compile(
-    r"(?:\s*\([^()]{1,30}\))?\s*[,(]\s*((?:an?\s+|(?:19|20)\d\d\s+)[^,.;()]{1,60}?)\s*"
-    r"(?=,(?!\s*(?:and|or|a|an|the)\b)|\(|\))"
+    r"(?:\s+(?:under\s+(?:test|evaluation|trial|assessment)|being\s+tested|involved|in\s+question))?"
+    r"(?:\s*\([^()]{1,30}\))?\s*[,(]\s*"
+    # a make and model year may end its sentence ("..., a 2026 Vantrell Osk with a driver.")
+    r"((?:an?\s+)?(?:19|20)\d\d\s+[^,.;()]{1,60}?(?=\s*(?:" + _NOT_A_LIST + r"|[.;]))"
+    r"|an?\s+[^,.;()]{1,60}?(?=\s*" + _NOT_A_LIST + r"))"
 )
 # A year and a capitalised name ("a 2017 Hollis Tern"), or a known make ("a white Subaru").
 _YEAR_NAME = re.compile(
