@@ -29,3 +29,16 @@ def test_what_the_ego_is_may_follow_under_test_and_end_its_sentence() -> None:
     )
     cast = read_cast(text)
     assert [m.quote for m in cast.others] == ["Unit 2"]
+
+
+def test_the_ego_numbered_2_is_read_as_the_rules_read_v1() -> None:
+    from arise.language.numbered import ego_number_view
+
+    text = "At the crossroads V2 (the AV) went straight; V1's nose hit V2's left rear door."
+    assert ego_number_view(text) == (
+        "At the crossroads V1 (the AV) went straight; V2's nose hit V1's left rear door."
+    )
+    reading = read_description(text)
+    assert reading.facts["spawn_position"].value == "crossing_road_from_left"
+    assert "V2's left rear" in reading.facts["spawn_position"].quote  # quoted as written
+    assert ego_number_view("V1 turned left; V2 came on.") == "V1 turned left; V2 came on."

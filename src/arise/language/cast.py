@@ -21,7 +21,9 @@ from dataclasses import dataclass, field, replace
 from functools import cache
 
 from arise.language.generic import lessons_of
-from arise.language.lexicon import class_pattern, lexicon, not_after_abbreviation, noun_class
+from arise.language.lexicon import class_pattern, lexicon, noun_class
+from arise.language.numbered import NUMBERED as _NUMBERED
+from arise.language.numbered import numbered_ego, sentence_end, sentence_start
 from arise.vocabulary import ActorClass
 
 PROP_NOUN_CLASSES = frozenset(cls for cls in ActorClass if cls.is_prop)
@@ -84,16 +86,7 @@ _RIDING = re.compile(
     r"^\s+(?:on|riding)\s+(?:(?:a|an|his|her|their|the)\s+)?(?:[\w'-]+\s+){0,2}$", re.I
 )
 _RIDDEN = (ActorClass.BICYCLE, ActorClass.MOTORCYCLE)
-# Numbered parties of a report: "V1", "Vehicle 2", "Veh. 1", "Unit 1"; pedestrians "P1".
-_NUMBERED = re.compile(r"\b(?:V|Veh\.?\s?|Vehicle\s|Unit\s|Party\s)([1-9])\b(?:'s)?")
 _NUMBERED_WALKER = re.compile(r"\bP([1-9])\b(?:'s)?")
-# What says a numbered vehicle is the one under test.
-_AUTONOMOUS = re.compile(
-    r"\b(?:autonomous|driverless|self-driving|automated|av|ads|robotaxi|test vehicle)\b", re.I
-)
-# "Unit 2, a hatchback in the right lane, struck the AV": "the AV" further on is another
-# party, not what the numbered one is ("V1 (the autonomous test vehicle)" is).
-_ANOTHER_AV = re.compile(r"^.{25,}\bthe\s+$", re.S)
 # NHTSA's typology names the ego "Vehicle" with no article, at a sentence's start; a
 # numbered "Vehicle 2" is a party like "V2" (`_NUMBERED`), never the bare name.
 _NOT_NUMBERED = r"(?!\s?#?\s?[1-9]\b)"
@@ -163,12 +156,6 @@ _EGO_APPOSITION = re.compile(
 _YEAR_NAME = re.compile(
     r"\b(?:19[5-9]\d|20[0-4]\d)\s+(?:[A-Z][\w-]*)(?:\s+(?:[A-Z0-9][\w-]*))?(?:\s+(?:[A-Z0-9][\w-]*))?"
 )
-
-
-@cache
-def _sentence_stop() -> re.Pattern[str]:
-    """A stop that ends a sentence: not one after a short form ("unprot. LT")."""
-    return re.compile(rf"{not_after_abbreviation()}[.;!?](?:\s|$)")
 
 
 @dataclass(frozen=True)
@@ -282,42 +269,8 @@ class Cast:
         return self.mention_at(position, position + 1)
 
 
-def sentence_start(text: str, position: int) -> int:
-    """Where the sentence holding `position` starts."""
-    ends = [m.end() for m in _sentence_stop().finditer(text, 0, position)]
-    return ends[-1] if ends else 0
-
-
-def sentence_end(text: str, position: int) -> int:
-    """Where the sentence holding `position` ends (a stop followed by a space, or the end)."""
-    found = _sentence_stop().search(text, position)
-    return found.start() if found else len(text)
-
-
 def _overlaps(spans: list[tuple[int, int]], start: int, end: int) -> bool:
     return any(a < end and start < b for a, b in spans)
-
-
-def _numbered_ego(text: str) -> str | None:
-    """Which number the ego has among numbered vehicles ("V1"...), or None if none are.
-
-    The one whose sentence says it is autonomous; else 1, the usual first party; else, when
-    the text names the ego in words ("the AV ... Unit 2, a hatchback"), none of them."""
-    numbers = {m.group(1) for m in _NUMBERED.finditer(text)}
-    if not numbers:
-        return None
-    for match in _NUMBERED.finditer(text):
-        end = min(sentence_end(text, match.end()), match.end() + 80)
-        following = _NUMBERED.search(text, match.end(), end)
-        window = text[match.end() : following.start() if following else end]
-        if any(
-            not _ANOTHER_AV.search(window[: hit.start()]) for hit in _AUTONOMOUS.finditer(window)
-        ):
-            return match.group(1)
-    if "1" in numbers:
-        return "1"
-    worded = any(m.group(0) != "i" for m in class_pattern("ego").finditer(text))
-    return None if worded else min(numbers)
 
 
 #: The insurer's client, the ego of a claim the insurer writes; in one the driver writes
@@ -377,7 +330,7 @@ def _ego_spans(text: str) -> list[Span]:
             for m in _NHTSA_EGO_AFTER_PREPOSITION.finditer(text)
         ]
         spans += [Span(*m.span()) for m in _NHTSA_EGO_OWNS.finditer(text)]
-    ego_number = _numbered_ego(text)
+    ego_number = numbered_ego(text)
     if ego_number is not None:
         spans += [Span(*m.span()) for m in _NUMBERED.finditer(text) if m.group(1) == ego_number]
     if not spans:
@@ -426,7 +379,7 @@ def read_cast(text: str) -> Cast:
     taken = [(s.start, s.end) for s in ego]
     found: list[Mention] = []
     skipped: list[str] = []
-    ego_number = _numbered_ego(text)
+    ego_number = numbered_ego(text)
     numbered: dict[str, int] = {}  # "V2" -> index in found
     candidates: list[tuple[int, int, ActorClass, str]] = []  # start, end, class, kind
     for match in _NUMBERED.finditer(text):

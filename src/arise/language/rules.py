@@ -34,6 +34,7 @@ from pydantic import BaseModel, ConfigDict, Field, ValidationError
 
 from arise.language.errors import RuleError
 from arise.language.lexicon import SAFE_LOADER, lexicon, slot_word
+from arise.language.numbered import ego_number_view
 from arise.language.patterns import compile_pattern
 from arise.vocabulary import (
     EgoPlan,
@@ -170,9 +171,10 @@ class CompiledRule:
     def hits(self, text: str, start: int = 0, end: int | None = None) -> Iterator[Hit]:
         """Matches that lie inside text[start:end] and inside no `unless` match."""
         stop = len(text) if end is None else end
-        vetoes = [m.span() for p in self.unless for m in p.finditer(text)]
+        seen = ego_number_view(text)  # "Vehicle 2's right rear" of an ego numbered 2
+        vetoes = [m.span() for p in self.unless for m in p.finditer(seen)]
         for pattern in self.when:
-            for match in pattern.finditer(text, start):
+            for match in pattern.finditer(seen, start):
                 if match.end() > stop:
                     break
                 if any(a <= match.start() and match.end() <= b for a, b in vetoes):
@@ -183,7 +185,7 @@ class CompiledRule:
                     value=self.rule.value.format(**slots) if slots else self.rule.value,
                     start=match.start(),
                     end=match.end(),
-                    quote=match.group(0),
+                    quote=text[match.start() : match.end()],
                     order=self.order,
                 )
 
