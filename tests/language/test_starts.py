@@ -400,3 +400,31 @@ def test_a_walker_who_is_not_the_adversary_on_the_street_a_turning_ego_enters() 
     [man] = [a for a in read_actors(reading) if a.scenic_class == "Pedestrian"]
     assert man.start is not None and man.start.value == "roadside_left"
     assert man.start_detail is not None and man.start_detail.value == "exit_far_corner"
+
+
+def test_a_pronoun_after_the_writer_means_the_last_other_subject() -> None:
+    reading = read_description(
+        "I was behind a slow tractor. A taxi that had been in the lane to my left swung "
+        "into the gap between me and the tractor. I braked and it missed my bumper by inches."
+    )
+    assert reading.facts["adversary_class"].value == "Car"
+    assert reading.facts["spawn_position"].value == "adjacent_lane_left"
+
+
+def test_a_party_heading_a_first_person_statement_is_the_ego() -> None:
+    reading = read_description(
+        "Claimant's statement. I was driving my van on Stoke Road when a scooter "
+        "pulled out from the right. The claimant's van was not damaged."
+    )
+    assert [m.quote for m in reading.cast.others] == ["a scooter"]
+
+
+def test_sides_said_in_words_of_a_transit_report() -> None:
+    bus = read_description(
+        "The ego went through on green. A coach was loading at the near-side stop, "
+        "occupying the right lane, which cut off the view to the south."
+    )
+    assert bus.facts["spawn_position"].value == "adjacent_lane_right"
+    assert "meeting" not in bus.facts  # a view cut off is no near miss
+    clock = read_description("You move off; a van coming from your nine o'clock runs its red.")
+    assert clock.facts["spawn_position"].value == "crossing_road_from_left"

@@ -285,6 +285,27 @@ _FIRST_PERSON = re.compile(r"^(?:i|we|my car|my vehicle|our car|our vehicle)$", 
 _SELF_PARTY = re.compile(
     r"\b(?:i am|i'm|i was|we are|we were)\s+the\s+(claimant|insured|policyholder)\b", re.I
 )
+# A first-person statement headed by its party: "Statement of claimant (Mr. ...). I was ..."
+_PARTY_STATEMENT = re.compile(
+    r"^\W*(?:(?:statement|account|version|declaration)\s+(?:of|by)\s+(?:the\s+)?"
+    r"(claimant|insured|policyholder)\b|(claimant|insured|policyholder)['\u2019]s\s+"
+    r"(?:statement|account|version|declaration)\b)",
+    re.I,
+)
+
+
+#: A party's own vehicle after its name: "the claimant's van" of a claimant who writes.
+_PARTY_OWN = (
+    r"(?:\s+(?:vehicle|car|van|truck|lorry|pickup|suv|hatchback|sedan|saloon|motorcycle|"
+    r"motorbike|bike|bicycle))"
+)
+
+
+def _party_word(found: re.Match[str]) -> str:
+    """The party a statement's writer says it is ("claimant")."""
+    return next(group for group in found.groups() if group)
+
+
 _POSSESSIVE = re.compile(r"['\u2019]s\b")
 _OWN_VEHICLE = re.compile(r"(?<=['\u2019]s)\s+(?:vehicle|car)\b(?![\s-]+park)", re.I)
 
@@ -309,17 +330,20 @@ def _ego_spans(text: str) -> list[Span]:
     ]
     # "I" only as a capital letter; "we"/"i" in lower case mid-word cannot occur (whole words)
     spans = [s for s in spans if text[s.start : s.end] != "i"]
-    self_party = _SELF_PARTY.search(text)
+    first_person = any(_FIRST_PERSON.match(text[s.start : s.end]) for s in spans)
+    self_party = _SELF_PARTY.search(text) or (
+        _PARTY_STATEMENT.match(text) if first_person else None
+    )
     if any(_FIRST_PERSON.match(text[s.start : s.end]) for s in spans) and not (
-        self_party and self_party.group(1).lower() != "claimant"
+        self_party and _party_word(self_party).lower() != "claimant"
     ):
         spans = [s for s in spans if not _INSURED.match(text[s.start : s.end])]
     if self_party is not None:
         # "I am the claimant": the writer's party is the ego wherever it is named
-        word = re.escape(self_party.group(1))
+        word = re.escape(_party_word(self_party))
         spans += [
             Span(*m.span())
-            for m in re.finditer(rf"\b(?:the\s+)?{word}(?:['\u2019]s)?\b", text, re.I)
+            for m in re.finditer(rf"\b(?:the\s+)?{word}(?:['\u2019]s{_PARTY_OWN}?)?\b", text, re.I)
             if not _overlaps([(s.start, s.end) for s in spans], *m.span())
         ]
     nhtsa = list(_NHTSA_EGO.finditer(text))

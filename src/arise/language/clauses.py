@@ -20,6 +20,7 @@ from functools import cache
 
 from arise.language.cast import Cast, Clause, Mention, Span, phrase_start
 from arise.language.lexicon import class_pattern, not_after_abbreviation
+from arise.language.numbered import sentence_start
 
 Actor = Mention | str  # a Mention, or "ego"
 
@@ -314,11 +315,17 @@ def _agrees(actor: Actor | None, plural: bool) -> bool:
 
 
 def _pronoun_referent(
-    clause: Clause, carried: Actor | None, text: str, spans: list[tuple[Span, Actor]]
+    clause: Clause,
+    carried: Actor | None,
+    text: str,
+    spans: list[tuple[Span, Actor]],
+    other: Actor | None = None,
 ) -> Actor | None:
     """Who a pronoun opening `clause` means: the subject carried on when the number
-    agrees ("two pedestrians cross ... while it drives": not the pedestrians), else the
-    nearest actor named before it that agrees."""
+    agrees ("two pedestrians cross ... while it drives": not the pedestrians); else the
+    nearest actor named before it in its sentence that agrees ("I pass a van and it pulls
+    out"); else `other`, the last subject that is not the ego ("A hatchback swung in between
+    me and the mixer. I braked and it missed me": the hatchback); else the nearest named."""
     found = _PRONOUN.match(text, clause.start, clause.end)
     if found is None:
         return carried
@@ -326,10 +333,22 @@ def _pronoun_referent(
     speaks = _ego_speaks(text, spans, clause)  # then "he" or "it" is not the ego
     if _agrees(carried, plural) and not (carried == "ego" and speaks):
         return carried
-    for span, actor in reversed(spans):
-        if span.end <= clause.start and _agrees(actor, plural) and not (actor == "ego" and speaks):
-            return actor
-    return carried
+    opened = sentence_start(text, clause.start)
+    named = [
+        actor
+        for span, actor in reversed(spans)
+        if span.end <= clause.start and _agrees(actor, plural) and not (actor == "ego" and speaks)
+    ]
+    in_sentence = [
+        actor
+        for span, actor in reversed(spans)
+        if opened <= span.start and span.end <= clause.start and actor in named
+    ]
+    if in_sentence:
+        return in_sentence[0]
+    if other is not None and _agrees(other, plural) and speaks:
+        return other
+    return named[0] if named else carried
 
 
 _FIRST_OR_SECOND = frozenset({"i", "me", "my", "we", "us", "our", "you", "your"})
@@ -352,6 +371,7 @@ def _carry_subjects(
         for span, actor in spans
     )
     main: Actor | None = None  # the subject of the last clause that is not a relative one
+    other: Actor | None = None  # the last such subject that is not the ego
     pending: list[int] = []  # a sentence's opening clauses without a subject yet
     sentence_open = True
     for clause in clauses:
@@ -361,6 +381,7 @@ def _carry_subjects(
             done.append(clause)
             if clause.opener not in _RELATIVE and clause.opener != "~participle":
                 main = clause.subject
+                other = main if main != "ego" else other
                 for index in pending:
                     done[index] = _with(done[index], clause.subject)
                 pending = []
@@ -383,7 +404,7 @@ def _carry_subjects(
         # a pronoun opening a sentence ("It pulled out") means one named before it, not the
         # subject of a later clause
         sentence_open = False
-        referent = _pronoun_referent(clause, main, text, spans)
+        referent = _pronoun_referent(clause, main, text, spans, other)
         if opens_with_pronoun:
             main = referent  # "he starts suddenly and goes out": he goes out
         done.append(_with(clause, referent))
