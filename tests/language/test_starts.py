@@ -428,3 +428,14 @@ def test_sides_said_in_words_of_a_transit_report() -> None:
     assert "meeting" not in bus.facts  # a view cut off is no near miss
     clock = read_description("You move off; a van coming from your nine o'clock runs its red.")
     assert clock.facts["spawn_position"].value == "crossing_road_from_left"
+
+
+def test_an_actor_beside_the_ego_starts_at_the_end_its_words_say() -> None:
+    from arise.language.actors import read_actors
+
+    reading = read_description(
+        "Ego in R lane; bin lorry stopped ahead. Ego moves L to pass; moped in L lane "
+        "@ 7 o'clock. A cyclist in the R lane ahead of the ego keeps going."
+    )
+    details = {a.quote: (a.start, a.start_detail) for a in read_actors(reading)}
+    assert details["moped"][1] is not None and details["moped"][1].value == "from_behind"

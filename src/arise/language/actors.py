@@ -17,6 +17,7 @@ from arise.language.readers import (
     Reading,
     cue_before,
     exit_street_walker,
+    lane_end,
     moves_in,
     read_start,
     read_stationary,
@@ -132,6 +133,9 @@ def _queued_ahead(cast: Cast, mention: Mention, actor: CastActor) -> bool:
     )
 
 
+_BESIDE = frozenset({RelativePosition.ADJACENT_LANE_LEFT, RelativePosition.ADJACENT_LANE_RIGHT})
+
+
 def read_actors(reading: Reading) -> list[CastActor]:
     """One actor per thing the description names other than the ego and the adversary, in
     the order of the spec's participants; then, when the text names the adversary with a
@@ -149,6 +153,11 @@ def read_actors(reading: Reading) -> list[CastActor]:
             ):
                 # "a woman is stepping off the far corner of the street you're turning into"
                 actor = replace(actor, start=walker.position, start_detail=walker.detail)
+            if actor.start in _BESIDE and actor.start_detail is None:
+                # "bike in R lane @ 4 o'clock": behind the ego in that lane
+                told = lane_end(cast, mention)
+                if told is not None:
+                    actor = replace(actor, start_detail=StartDetail(told.value))
             if held and _queued_ahead(cast, mention, actor):
                 # "second in the queue behind a hatchback" at a red: it waits there too
                 actor = replace(actor, role=ActorRole.STOPPED, stationary=True)

@@ -1499,24 +1499,26 @@ def read_start_detail(reading: Reading) -> None:
                 "spawn_position", walker.position.value, walker.quote
             )
         return
+    end_of_lane = lane_end(cast, adversary)
+    if end_of_lane is not None:
+        reading.facts["start_detail"] = end_of_lane
+
+
+def lane_end(cast: Cast, mention: Mention) -> GroundedFact | None:
+    """Which end of the lane beside the ego `mention` starts at, when its words say so."""
     book = rulebook()
     text = cast.text
-    for start, end in words_of(cast, adversary):
+    for start, end in words_of(cast, mention):
         # "merged into its lane ahead of it": it ends up in front of the ego, unless it came
         # from behind first; "approaching from behind on the AV's right", "overtakes": it
         # starts behind the ego ("from behind a parked van" is where it hides instead).
         ahead = book.first(Fact.AHEAD_OF_EGO, text, start, end)
         if ahead is not None and not book.first(Fact.FROM_BEHIND, text, start, ahead.start):
-            reading.facts["start_detail"] = text_fact(
-                "start_detail", StartDetail.AHEAD.value, ahead.quote
-            )
-            return
+            return text_fact("start_detail", StartDetail.AHEAD.value, ahead.quote)
         behind = book.first(Fact.FROM_BEHIND, text, start, end + 40)
         if behind is not None and behind.end <= end:
-            reading.facts["start_detail"] = text_fact(
-                "start_detail", StartDetail.FROM_BEHIND.value, behind.quote
-            )
-            return
+            return text_fact("start_detail", StartDetail.FROM_BEHIND.value, behind.quote)
+    return None
 
 
 def moves(text: str, start: int, end: int) -> bool:
