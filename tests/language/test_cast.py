@@ -387,3 +387,12 @@ def test_the_writers_vehicle_named_again_is_the_ego() -> None:
 def test_a_party_described_as_a_walker_is_that_walker() -> None:
     cast = parse("The claimant, an old man with a stick, was on foot in the crosswalk.")
     assert [(m.cls.value, m.quote) for m in cast.others] == [("Pedestrian", "The claimant")]
+
+
+def test_a_rider_after_a_cyclist_or_pedalling_rides_a_bicycle() -> None:
+    cast = parse("Passing a cyclist is hard here. You are behind a rider on the climb.")
+    assert [(m.cls.value, len(m.spans)) for m in cast.others] == [("Bicycle", 2)]
+    cast = parse("A rider pedalling hard comes up on the left.")
+    assert [m.cls.value for m in cast.others] == ["Bicycle"]
+    cast = parse("A motorcyclist waits; a rider on a scooter pulls out.")
+    assert [m.cls.value for m in cast.others][0] == "Motorcycle"

@@ -496,6 +496,13 @@ def read_cast(text: str) -> Cast:
             token = count_match.group(1).lower()
             count = int(token) if token.isdigit() else _COUNT_WORDS.get(token, 1)
         span = Span(start, end)
+        if kind == "noun" and _RIDER.match(word):
+            cls, pedalled = _rider_class(found, cls, after)
+            if pedalled is not None:  # "a cyclist ... behind a rider pedalling uphill"
+                index = found.index(pedalled)
+                found[index] = pedalled.with_span(span)
+                taken.append((start, end))
+                continue
         earlier = _same_thing(found, cls, before, word, ego_number, after)
         if earlier is None and kind == "noun" and _bare_repeat(text, start, word, after, cls):
             # terse notes drop articles: "bus in bay ... ped emerges ahead of bus nose"
@@ -527,6 +534,24 @@ def read_cast(text: str) -> Cast:
     found = _bracketed_descriptions(text, found)
     found = _heading_mentions(text, found)
     return Cast(text, tuple(ego), tuple(found), tuple(skipped))
+
+
+_RIDER = re.compile(r"^rider$", re.I)
+_PEDALS = re.compile(r"^\W*(?:\w+\s+)?(?:pedal|pedals|pedalled|pedaled|pedalling|pedaling)\b", re.I)
+
+
+def _rider_class(
+    found: list[Mention], cls: ActorClass, after: str
+) -> tuple[ActorClass, Mention | None]:
+    """A "rider" is a motorcyclist unless it pedals or the scene's only two-wheeler so far
+    is a bicycle; then a bicycle, and that bicycle when one was named."""
+    bicycles = [m for m in found if m.cls is ActorClass.BICYCLE]
+    motorcycles = [m for m in found if m.cls is ActorClass.MOTORCYCLE]
+    if motorcycles:
+        return cls, None
+    if bicycles and len(bicycles) == 1:
+        return ActorClass.BICYCLE, bicycles[0]
+    return (ActorClass.BICYCLE if _PEDALS.match(after) else cls), None
 
 
 def _a_kind(text: str, start: int, bare_plural: bool) -> bool:
