@@ -63,7 +63,10 @@ def snapshot() -> list[dict[str, object]]:
             facts: dict[str, object] = {
                 f.name: f.value for f in spec.grounding if f.name != "participant"
             }
-            facts["actors"] = [a.describe() for a in spec.actors]
+            facts["actors"] = [
+                a.describe() + (f" [{a.start_detail.value}]" if a.start_detail else "")
+                for a in spec.actors
+            ]
             facts["adversary_class"] = spec.scenic_class
             rows.append({"id": item.id, "facts": facts})
     return rows
