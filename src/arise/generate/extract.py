@@ -114,8 +114,9 @@ def extract_spec(
         assert answer is not None
         notes.append(f"{MODEL_ANSWER_UNUSABLE} ({failure})")
     else:
-        answer = completion.parsed
-        assert isinstance(answer, ExtractionAnswer)
+        parsed = completion.parsed
+        assert isinstance(parsed, ExtractionAnswer)
+        answer = parsed
     grounded = ground(condensed.text, answer, reading)
     return Extraction(
         spec=grounded.spec,
