@@ -334,9 +334,7 @@ def _ego_spans(text: str) -> list[Span]:
     self_party = _SELF_PARTY.search(text) or (
         _PARTY_STATEMENT.match(text) if first_person else None
     )
-    if any(_FIRST_PERSON.match(text[s.start : s.end]) for s in spans) and not (
-        self_party and _party_word(self_party).lower() != "claimant"
-    ):
+    if first_person and not (self_party and _party_word(self_party).lower() != "claimant"):
         spans = [s for s in spans if not _INSURED.match(text[s.start : s.end])]
     if self_party is not None:
         # "I am the claimant": the writer's party is the ego wherever it is named
@@ -549,7 +547,7 @@ def _rider_class(
     motorcycles = [m for m in found if m.cls is ActorClass.MOTORCYCLE]
     if motorcycles:
         return cls, None
-    if bicycles and len(bicycles) == 1:
+    if len(bicycles) == 1:
         return ActorClass.BICYCLE, bicycles[0]
     return (ActorClass.BICYCLE if _PEDALS.match(after) else cls), None
 

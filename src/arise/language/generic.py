@@ -3,10 +3,11 @@
 Driver-training texts mix the scene with lessons ("Cover the brake whenever you pass parked
 cars", "Where there's a ball, there's usually a child"). A road user first named in such a
 sentence is a kind, not one more actor, and weather named there ("In wet weather always
-leave more room") is no scene's weather. Words of the lexicon class `generic` mark a lesson; an order
-to the reader (a sentence opening with a verb of the class `imperative`, maybe after a short
-phrase of time or place) is one only for the plural kinds it names ("check for people on
-bikes"), since an order may also point at the scene ("Check your mirror: a van is ...").
+leave more room") is no scene's weather. Words of the lexicon class `generic` mark a lesson;
+an order to the reader (a sentence opening with a verb of the class `imperative`, maybe
+after a short phrase of time or place) is one only for the plural kinds it names ("check for
+people on bikes"), since an order may also point at the scene ("Check your mirror: a van
+is ...").
 """
 
 from __future__ import annotations
