@@ -12,6 +12,7 @@ import pytest
 from pydantic import BaseModel, field_validator
 
 from arise.llm import StructuredOutputFailed, get_provider
+from arise.llm.accounting import UsageLedger
 from arise.llm.openai_compat import OpenAICompatProvider
 from arise.llm.retry import RetryPolicy
 from arise.llm.types import Capabilities, ProviderError, ProviderErrorKind, Request, user
@@ -121,11 +122,17 @@ def test_invalid_reply_is_re_asked_with_the_error(llama_server: str) -> None:
     llm.close()
 
 
-def test_re_asks_are_bounded_and_the_failure_carries_the_transcript(llama_server: str) -> None:
+def _one_try_per_call(llama_server: str, max_reasks: int) -> UsageLedger:
+    """A provider that never retries a call, so every attempt counted is a re-ask."""
     llm = get_provider(
         "llamacpp", base_url=llama_server, cache=False, retry=RetryPolicy(attempts=1)
     )
-    llm.max_reasks = 1
+    llm.max_reasks = max_reasks
+    return llm
+
+
+def test_re_asks_are_bounded_and_the_failure_carries_the_transcript(llama_server: str) -> None:
+    llm = _one_try_per_call(llama_server, max_reasks=1)
     with pytest.raises(StructuredOutputFailed) as info:
         llm.complete([user('Return {"word": "x"}')], max_tokens=20, schema=NeverValid)
     failure = info.value
@@ -140,6 +147,17 @@ def test_re_asks_are_bounded_and_the_failure_carries_the_transcript(llama_server
     llm.close()
 
 
+def test_a_reply_cut_off_at_the_token_limit_is_not_re_asked(llama_server: str) -> None:
+    """Three tokens cannot hold the object: the same limit would cut every re-ask too."""
+    llm = _one_try_per_call(llama_server, max_reasks=2)
+    with pytest.raises(StructuredOutputFailed) as info:
+        llm.complete([user('Return {"word": "HELLO"}')], max_tokens=3, schema=Shout)
+    failure = info.value
+    assert failure.attempts == 1 and len(llm.calls) == 1
+    assert "cut off at the token limit" in failure.errors[-1]
+    llm.close()
+
+
 def test_cli_ping_names_the_server_model(llama_server: str) -> None:
     from typer.testing import CliRunner
 
@@ -151,17 +169,3 @@ def test_cli_ping_names_the_server_model(llama_server: str) -> None:
     assert result.stdout.startswith("llamacpp (local) answered")
     assert "server has qwen-local" in result.stdout
     assert "prompt +" in result.stdout
-
-
-def test_a_reply_cut_off_at_the_token_limit_is_not_re_asked(llama_server: str) -> None:
-    """Three tokens cannot hold the object: the same limit would cut every re-ask too."""
-    llm = get_provider(
-        "llamacpp", base_url=llama_server, cache=False, retry=RetryPolicy(attempts=1)
-    )
-    llm.max_reasks = 2
-    with pytest.raises(StructuredOutputFailed) as info:
-        llm.complete([user('Return {"word": "HELLO"}')], max_tokens=3, schema=Shout)
-    failure = info.value
-    assert failure.attempts == 1 and len(llm.calls) == 1
-    assert "cut off at the token limit" in failure.errors[-1]
-    llm.close()

@@ -90,6 +90,10 @@ def _role(
     return ActorRole.LEAD
 
 
+#: The lanes beside the ego, whose end (ahead or behind) an actor's words may say.
+_BESIDE = frozenset({RelativePosition.ADJACENT_LANE_LEFT, RelativePosition.ADJACENT_LANE_RIGHT})
+
+
 def read_actor(cast: Cast, mention: Mention) -> CastActor:
     """One actor other than the adversary, from the words about it. Waiting or standing
     still, for an actor that is not the adversary (whose waiting is the calm before its
@@ -112,13 +116,18 @@ def read_actor(cast: Cast, mention: Mention) -> CastActor:
         start=start,
         stationary=stationary,
     )
+    detail = start_detail(position)
+    if detail is None and start in _BESIDE:
+        # "bike in R lane @ 4 o'clock": behind the ego in that lane
+        told = lane_end(cast, mention)
+        detail = StartDetail(told.value) if told is not None else None
     return CastActor(
         role=role,
         scenic_class=mention.cls,
         count=mention.count,
         count_stated=mention.counted,
         start=start,
-        start_detail=start_detail(position),
+        start_detail=detail,
         stationary=stationary or mention.is_prop,
         quote=mention.quote,
     )
@@ -131,9 +140,6 @@ def _queued_ahead(cast: Cast, mention: Mention, actor: CastActor) -> bool:
         and actor.start is RelativePosition.AHEAD_SAME_LANE
         and not moves_in(cast.text, words_of(cast, mention))
     )
-
-
-_BESIDE = frozenset({RelativePosition.ADJACENT_LANE_LEFT, RelativePosition.ADJACENT_LANE_RIGHT})
 
 
 def read_actors(reading: Reading) -> list[CastActor]:
@@ -153,11 +159,6 @@ def read_actors(reading: Reading) -> list[CastActor]:
             ):
                 # "a woman is stepping off the far corner of the street you're turning into"
                 actor = replace(actor, start=walker.position, start_detail=walker.detail)
-            if actor.start in _BESIDE and actor.start_detail is None:
-                # "bike in R lane @ 4 o'clock": behind the ego in that lane
-                told = lane_end(cast, mention)
-                if told is not None:
-                    actor = replace(actor, start_detail=StartDetail(told.value))
             if held and _queued_ahead(cast, mention, actor):
                 # "second in the queue behind a hatchback" at a red: it waits there too
                 actor = replace(actor, role=ActorRole.STOPPED, stationary=True)

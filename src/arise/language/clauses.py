@@ -16,6 +16,7 @@ after, before, until, because, which, that, who). Its subject is:
 from __future__ import annotations
 
 import re
+from collections.abc import Iterable
 from functools import cache
 
 from arise.language.cast import Cast, Clause, Mention, Span, phrase_start
@@ -354,11 +355,16 @@ def _pronoun_referent(
 _FIRST_OR_SECOND = frozenset({"i", "me", "my", "we", "us", "our", "you", "your"})
 
 
-def _ego_speaks(text: str, spans: list[tuple[Span, Actor]], clause: Clause) -> bool:
-    """Whether the ego was last named as "we", "I" or "you": then "he" or "it" is someone
-    else ("when we are passing near, he starts suddenly")."""
-    named = [span for span, actor in spans if actor == "ego" and span.end <= clause.start]
+def ego_speaks_before(text: str, ego: Iterable[Span], position: int) -> bool:
+    """Whether the ego was last named before `position` as "we", "I" or "you": then "he" or
+    "it" is someone else ("when we are passing near, he starts suddenly"; "you see a van,
+    and behind it you make out a motorcycle")."""
+    named = [span for span in ego if span.end <= position]
     return bool(named) and text[named[-1].start : named[-1].end].lower() in _FIRST_OR_SECOND
+
+
+def _ego_speaks(text: str, spans: list[tuple[Span, Actor]], clause: Clause) -> bool:
+    return ego_speaks_before(text, (span for span, actor in spans if actor == "ego"), clause.start)
 
 
 def _carry_subjects(

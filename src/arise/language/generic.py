@@ -14,9 +14,10 @@ from __future__ import annotations
 
 import re
 from dataclasses import dataclass
-from functools import cache
+from functools import lru_cache
 
-from arise.language.lexicon import class_pattern, not_after_abbreviation
+from arise.language.lexicon import class_pattern
+from arise.language.numbered import sentence_spans
 
 #: A short phrase of time, place or condition before an order ("In wet weather give ...",
 #: "Before any right turn, check ...", "At night, slow down"): its first word.
@@ -76,14 +77,13 @@ def _opens_with_order(text: str, start: int, end: int) -> bool:
     return False
 
 
-@cache
+@lru_cache(maxsize=16)  # keyed by the text: bounded, as a server reads many
 def lessons_of(text: str) -> Lessons:
     """The lessons and orders of `text` (a sentence or a `;`-part each)."""
     lessons: list[tuple[int, int]] = []
     orders: list[tuple[int, int]] = []
     marker = class_pattern("generic")
-    stops = [m.end() for m in re.finditer(rf"{not_after_abbreviation()}[.!?;]+", text)]
-    for start, end in zip([0, *stops], [*stops, len(text)], strict=True):
+    for start, end in sentence_spans(text):
         if marker.search(text, start, end):
             lessons.append((start, end))
         elif _opens_with_order(text, start, end):

@@ -9,7 +9,7 @@ the same length, so every offset and quote still points at the description itsel
 from __future__ import annotations
 
 import re
-from functools import cache
+from functools import cache, lru_cache
 
 from arise.language.lexicon import class_pattern, not_after_abbreviation
 
@@ -36,13 +36,19 @@ def sentence_start(text: str, position: int) -> int:
     return ends[-1] if ends else 0
 
 
+def sentence_spans(text: str) -> list[tuple[int, int]]:
+    """Every sentence of `text`, as (start, end) with its stop included."""
+    stops = [m.end() for m in _sentence_stop().finditer(text)]
+    return list(zip([0, *stops], [*stops, len(text)], strict=True))
+
+
 def sentence_end(text: str, position: int) -> int:
     """Where the sentence holding `position` ends (a stop followed by a space, or the end)."""
     found = _sentence_stop().search(text, position)
     return found.start() if found else len(text)
 
 
-@cache
+@lru_cache(maxsize=16)  # keyed by the text: bounded, as a server reads many
 def numbered_ego(text: str) -> str | None:
     """Which number the ego has among numbered vehicles ("V1"...), or None if none are.
 
@@ -65,7 +71,7 @@ def numbered_ego(text: str) -> str | None:
     return None if worded else min(numbers)
 
 
-@cache
+@lru_cache(maxsize=16)  # keyed by the text: bounded, as a server reads many
 def ego_number_view(text: str) -> str:
     """`text` as the rules read it: when the ego is a party numbered other than 1 ("Vehicle
     2 (the AV)"), its number and 1 trade places in every numbered name, so "Vehicle 2's

@@ -23,6 +23,7 @@ from arise.language.cast import (
     sentence_end,
     sentence_start,
 )
+from arise.language.clauses import ego_speaks_before
 from arise.language.facts import FactSource, GroundedFact, StartFact, start_detail, text_fact
 from arise.language.generic import lessons_of
 from arise.language.quotes import find_quote
@@ -494,8 +495,6 @@ def _ego_named_in(cast: Cast, clause: Clause) -> bool:
     )
 
 
-#: The ego as the writer or the reader: "it" or "him" after it is someone else.
-_SPEAKING = frozenset({"i", "me", "we", "us", "you"})
 _HIDDEN_BY = re.compile(r"\b(?:hidden|hiding|concealed|obscured|masked|screened)\s+$", re.I)
 
 
@@ -508,8 +507,7 @@ def _pronoun_means_another(cast: Cast, mention: Mention, hit: Hit) -> bool:
         return False
     if _HIDDEN_BY.search(cast.text, max(0, hit.start - 30), hit.start):
         return True  # "hidden behind it": nothing hides from the ego behind the ego
-    said = [s for s in cast.ego if s.end <= hit.start]
-    if said and cast.text[said[-1].start : said[-1].end].lower() in _SPEAKING:
+    if ego_speaks_before(cast.text, cast.ego, hit.start):
         return True  # "you see a van, and behind it you make out ...": "it" is not "you"
     before = [c for c in cast.clauses if c.start <= hit.start]
     for clause in reversed(before):
