@@ -432,6 +432,8 @@ def test_the_dev_sets_load_and_validate() -> None:
         DevSet.FRESH4: 36,
         DevSet.FRESH5: 40,
         DevSet.FRESH6: 40,
+        DevSet.FRESH7: 40,
+        DevSet.FRESH8: 24,
         DevSet.PLACEMENT: 20,
     }
     assert sum(counts.values()) >= 66

@@ -78,6 +78,24 @@ CASES = [
             )
         ),
     ),
+    (
+        # a second road user from the other side of the junction: the cross street's far
+        # approach, not a car pulling out from the kerb
+        "At a crossroads with no signals the ego goes straight on. A motorcycle comes from "
+        "the left and a van comes from the right at the same moment.",
+        "A motorcycle",
+        "crossing_road_from_left",
+        Truth(
+            actors=(
+                LabeledActor(
+                    "Motorcycle", 1, start=Start.LEFT, direction=Direction.CROSSING_LEFT_TO_RIGHT
+                ),
+                LabeledActor(
+                    "Van", 1, start=Start.RIGHT, direction=Direction.CROSSING_RIGHT_TO_LEFT
+                ),
+            )
+        ),
+    ),
 ]
 
 

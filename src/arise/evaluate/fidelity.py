@@ -99,6 +99,10 @@ class DevSet(StrEnum):
     FRESH5 = "fresh5"
     # a sixth probe, written 2026-11-30 by a helper that read no reader, first scored by the lead
     FRESH6 = "fresh6"
+    # a seventh probe, written 2026-11-30 by a helper, aimed at where road users start
+    FRESH7 = "fresh7"
+    # an eighth probe, written 2026-11-30 by a helper, aimed at stationary hazards and props
+    FRESH8 = "fresh8"
     # placement probes of our own: two roles, parked and stalled, lanes beside the ego
     PLACEMENT = "placement"
     # tests/heldapart: measured only, never tuned on (its README states the rule)
@@ -117,6 +121,8 @@ DEVSET_FILES: dict[DevSet, str] = {
     DevSet.FRESH4: "fresh4.jsonl",
     DevSet.FRESH5: "fresh5.jsonl",
     DevSet.FRESH6: "fresh6.jsonl",
+    DevSet.FRESH7: "fresh7.jsonl",
+    DevSet.FRESH8: "fresh8.jsonl",
     DevSet.PLACEMENT: "placement.jsonl",
 }
 

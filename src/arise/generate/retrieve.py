@@ -21,6 +21,7 @@ from enum import IntEnum
 from arise.generate.spec import Actor, ScenarioSpec
 from arise.kb.actors import for_actor, spawn_span
 from arise.kb.loader import KnowledgeBase
+from arise.kb.props import PROP_ROW_TAG, prop_row
 from arise.kb.retrieval.base import Retriever
 from arise.kb.schema import CONFLICT_ROUTE, Component, Entry
 from arise.kb.weather import weather_choice
@@ -638,6 +639,52 @@ def _misc_fit(actor: Actor) -> Callable[[Entry], int]:
     return fit
 
 
+#: The kerb beside a lane: a bus "occupying the right lane" at its stop, which no spawn of
+#: the geometry can put in that lane, stands at the right kerb rather than nowhere.
+KERB_OF_LANE = {
+    RelativePosition.ADJACENT_LANE_RIGHT: Approach.ROADSIDE_RIGHT,
+    RelativePosition.ADJACENT_LANE_LEFT: Approach.ROADSIDE_LEFT,
+}
+
+
+def _misc_side_fits(start: RelativePosition | None, approach: Approach | None) -> bool:
+    """Whether a misc entry puts an actor said to start at `start` on its side of the road."""
+    if start is None or approach_fit(start, approach) <= Fit.UNSPECIFIC:
+        return True
+    return approach is not None and approach is KERB_OF_LANE.get(start)
+
+
+#: Where a row of props stands for each start the text gives it: the row entry and its
+#: parameters (the lane to the left is a row 3.5 m left of the ego's lane).
+PROP_ROW_PLACES: dict[RelativePosition | None, tuple[str, dict[str, str]]] = {
+    None: ("misc.prop_row_in_lane_ahead", {}),
+    RelativePosition.AHEAD_SAME_LANE: ("misc.prop_row_in_lane_ahead", {}),
+    RelativePosition.ADJACENT_LANE_LEFT: (
+        "misc.prop_row_in_lane_ahead",
+        {"OPT_MISC_ROW_LATERAL": "-3.5"},
+    ),
+    RelativePosition.ROADSIDE_LEFT: (
+        "misc.prop_row_in_lane_ahead",
+        {"OPT_MISC_ROW_LATERAL": "-3.5"},
+    ),
+    RelativePosition.ONCOMING: ("misc.prop_row_in_lane_ahead", {"OPT_MISC_ROW_LATERAL": "-3.5"}),
+    RelativePosition.ADJACENT_LANE_RIGHT: ("misc.prop_row_right_roadside", {}),
+    RelativePosition.ROADSIDE_RIGHT: ("misc.prop_row_right_roadside", {}),
+}
+
+
+def _prop_row(actor: Actor, index: int, rows: list[Entry]) -> list[Entry]:
+    """A row of the actor's props in its number, where its start puts it (none for a road
+    user, or a start no row stands at)."""
+    if actor.scenic_class.is_road_user or actor.start not in PROP_ROW_PLACES:
+        return []
+    entry_id, settings = PROP_ROW_PLACES[actor.start]
+    entry = next((e for e in rows if e.id == entry_id), None)
+    if entry is None:
+        return []
+    return [prop_row(entry, actor.scenic_class, actor.count, f"P{index + 1}", settings)]
+
+
 def _add_extras(
     spec: ScenarioSpec,
     kb: KnowledgeBase,
@@ -670,25 +717,30 @@ def _add_extras(
     misc_pool = [e for e in kb.of(Component.MISC) if fits(e)]
     chosen_misc: list[Entry] = []
     unplaced = [
-        (spec.participants[i], actor)
+        (i, spec.participants[i], actor)
         for i, actor in enumerate(spec.actors[: len(spec.participants)])
         if i not in (placed or set())
     ]
-    for participant, actor in unplaced[:MAX_MISC]:
+    rows = [e for e in misc_pool if PROP_ROW_TAG in e.tags]
+    for index, participant, actor in unplaced[:MAX_MISC]:
         # Only an entry that places the class the cast gave this participant: a bus stop
         # is a prop, not a bus; nothing is added for a thing no entry places.
         named = {actor.scenic_class}
         same_kind = [
             e
             for e in misc_pool
-            if _created_classes(e)
+            if PROP_ROW_TAG not in e.tags
+            and _created_classes(e)
             and _created_classes(e) <= named
             # nor one that puts it where the text does not: an oncoming cyclist is no
             # cyclist riding ahead
-            and (actor.start is None or approach_fit(actor.start, e.approach) <= Fit.UNSPECIFIC)
+            and _misc_side_fits(actor.start, e.approach)
         ]
         ranked = _ranked(retriever, participant, Component.MISC, same_kind)
         picked = _prefer(ranked, _misc_fit(actor))[:1]
+        if not (picked and len(_created(picked[0])) == actor.count):
+            # a prop no entry places in its number (or at all): a row of its own
+            picked = _prop_row(actor, index, rows) or picked
         if not picked:
             result.notes.append(f"misc: no entry places {participant!r}; left out")
         for entry in picked:

@@ -35,13 +35,24 @@ _COUNT_WORDS = {
     "four": 4,
     "five": 5,
     "six": 6,
+    "seven": 7,
+    "eight": 8,
+    "nine": 9,
+    "ten": 10,
+    "half a dozen": 6,
+    "a dozen": 12,
+    "dozen": 12,
     "pair of": 2,
     "couple of": 2,
 }
-# A count a few modifiers before the noun; not a lane's number ("#3 lane as V2") and not
-# across a joining word.
+# A count a few modifiers before the noun ("half a dozen orange cones", "10 cones"); not a
+# lane's number ("#3 lane as V2"), not a quantity, and not across a joining word.
 _COUNT = re.compile(
-    r"(?<!#)\b(two|three|four|five|six|\d|pair of|couple of)\s+"
+    r"(?<!#)\b(two|three|four|five|six|seven|eight|nine|ten|half a dozen|a dozen|dozen|\d{1,2}|"
+    r"pair of|couple of)\s+"
+    # a number of units is a quantity, not a count ("at 25 mph a cyclist")
+    r"(?!(?:mph|km|kph|kmh|km/h|m|ft|feet|foot|metres|meters|miles|mi|yards|yd|s|sec|secs|"
+    r"seconds|min|mins|minutes|hrs|hours|percent|o'clock)\b)"
     r"(?:(?!(?:as|and|when|while|then|to|from|in|into|on|at|lane|lanes)\b)\w+[- ]){0,2}$",
     re.I,
 )
