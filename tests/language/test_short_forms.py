@@ -42,3 +42,12 @@ def test_the_ego_numbered_2_is_read_as_the_rules_read_v1() -> None:
     assert reading.facts["spawn_position"].value == "crossing_road_from_left"
     assert "V2's left rear" in reading.facts["spawn_position"].quote  # quoted as written
     assert ego_number_view("V1 turned left; V2 came on.") == "V1 turned left; V2 came on."
+
+
+def test_a_title_ends_no_sentence_so_the_egos_heading_after_a_name_is_read() -> None:
+    text = (
+        "Our insured, Dr. Ines Walde, was eastbound on Harlow Street when a westbound van "
+        "drifted over the centre line."
+    )
+    assert sentence_end(text, 0) == len(text) - 1
+    assert read_description(text).facts["spawn_position"].value == "oncoming"

@@ -1162,7 +1162,8 @@ def _ego_bearing(cast: Cast) -> int | None:
             found = _heading(cast.text, *opener)
             if found:
                 return _COMPASS[found.value]
-        if found and not re.search(r"[.;]", cast.text[span.end : found.start]):
+        # within the ego's sentence (`until`, which knows "Mr." ends none) and clause
+        if found and ";" not in cast.text[span.end : found.start]:
             return _COMPASS[found.value]
     return None
 
