@@ -396,3 +396,17 @@ def test_a_rider_after_a_cyclist_or_pedalling_rides_a_bicycle() -> None:
     assert [m.cls.value for m in cast.others] == ["Bicycle"]
     cast = parse("A motorcyclist waits; a rider on a scooter pulls out.")
     assert [m.cls.value for m in cast.others][0] == "Motorcycle"
+
+
+def test_the_car_a_relative_clause_places_is_a_new_one() -> None:
+    text = (
+        "A motorbike came against me so I went back behind the lorry. "
+        "The car which was following me had to brake hard."
+    )
+    cast = read_cast(text)
+    assert [m.cls.value for m in cast.others] == ["Motorcycle", "Truck", "Car"]
+
+
+def test_what_the_writer_or_reader_is_is_the_ego() -> None:
+    text = "You're the lead car at the lights when a scooter jumps the red from the right."
+    assert [m.quote for m in read_cast(text).others] == ["a scooter"]

@@ -85,7 +85,10 @@ _EGO_DRIVER = re.compile(
 # The vehicle the writer drives ("I am drive the car", "we were driving a hire van") is the ego.
 _EGO_DRIVES = re.compile(
     r"\b(?:i|we)\s+(?:am\s+|was\s+|were\s+|'m\s+)?(?:drive|drives|driving|drove)\s+"
-    r"(?:the|a|an|my|our)\s+(?:[\w'-]+\s+){0,2}$",
+    r"(?:the|a|an|my|our)\s+(?:[\w'-]+\s+){0,2}$"
+    # what the writer or reader is: "I was the first car waiting", "you're the lead car"
+    r"|\b(?:i\s+was|i\s+am|i'm|we\s+were|we\s+are|we're|you\s+are|you're|you\s+were)\s+"
+    r"(?:the|a|an)\s+(?:[\w'-]+\s+){0,2}$",
     re.I,
 )
 # The writer's own vehicle named again: "I was driving the car ... I stopped the car".
@@ -941,7 +944,8 @@ def _is_party(mention: Mention) -> bool:
 #: After a generic "the car": where it is from the ego, or that it comes towards the ego,
 #: which names a new one ("wait behind the lorry until the car coming towards you has gone").
 _PLACED_BY_THE_EGO = re.compile(
-    r"^\s*(?:(?:behind|in front|ahead|following|next to|beside|alongside)\b(?!\s+(?:it|them)\b)"
+    r"^\s*(?:(?:(?:which|that|who)\s+(?:was|were|is|are|had\s+been|has\s+been)\s+)?"
+    r"(?:behind|in front|ahead|following|next to|beside|alongside)\b(?!\s+(?:it|them)\b)"
     r"|(?:coming|driving|heading|travelling|traveling)\s+(?:towards|toward|at)\s+(?:you|me|us|the ego|the av)\b"
     r"|(?:coming|driving|travelling|traveling)\s+the\s+other\s+way\b"
     r"|(?:from|in)\s+(?:the\s+)?(?:other|opposite)\s+direction\b)",
