@@ -51,4 +51,3 @@ def test_a_title_ends_no_sentence_so_the_egos_heading_after_a_name_is_read() -> 
     )
     assert sentence_end(text, 0) == len(text) - 1
     assert read_description(text).facts["spawn_position"].value == "oncoming"
-
