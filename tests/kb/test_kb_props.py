@@ -10,6 +10,7 @@ from arise.generate.assemble import assemble
 from arise.generate.grounding import ground
 from arise.generate.retrieve import retrieve
 from arise.generate.spec import ExtractionAnswer
+from arise.kb.compose import composition_problems
 from arise.kb.loader import KnowledgeBase, load_kb
 from arise.kb.props import PropRowError, prop_row
 from arise.kb.retrieval import BM25Retriever
@@ -36,6 +37,10 @@ def test_a_row_copy_takes_the_class_the_count_and_names_of_its_own(kb: Knowledge
     other = prop_row(kb.get(ROW), ActorClass.of("Cone"), 2, "P3")
     assert not set(row.defines) & set(other.defines)
     assert not set(row.params) & set(other.params)
+    # and each has a mark of its own, so both may be chosen
+    assert (row.label, other.label) == (f"{ROW} as P2", f"{ROW} as P3")
+    geometry = kb.get("geometry.straight_road")
+    assert not composition_problems([geometry, row, other], None)
 
 
 def test_a_long_row_is_capped_and_a_road_user_or_another_entry_is_refused(
@@ -76,7 +81,7 @@ def test_props_stand_in_their_number_where_the_text_puts_them(
     maps = {name: entry.features for name, entry in MapRegistry().entries.items()}
     found = retrieve(spec, kb, BM25Retriever(kb), maps, TEXT)
     labels = [e.label for e in found.chosen_entries()]
-    assert labels.count(ROW) == 1 and "misc.prop_row_right_roadside" in labels, labels
+    assert f"{ROW} as P1" in labels and "misc.prop_row_right_roadside as P2" in labels, labels
     assert spec.no_adversary  # the drums are the hazard, not an adversary that moves
     draft = assemble(found, None, TEXT, params={})
     truth = Truth(

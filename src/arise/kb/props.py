@@ -58,5 +58,6 @@ def prop_row(
             "snippet": snippet,
             "defines": [renames[name] for name in entry.defines],
             "params": [params[name] for name in entry.params],
+            "row": key,
         }
     )

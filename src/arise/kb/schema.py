@@ -106,6 +106,11 @@ class Entry(BaseModel):
     actor_class: ActorClass | None = Field(
         default=None, description="that actor's Scenic class, a road user's (set with `actor`)"
     )
+    row: str | None = Field(
+        default=None,
+        description="set on a copy made by `arise.kb.props.prop_row`: the suffix ('P2') of "
+        "its names, one per obstacle of the scene; never in the data files",
+    )
 
     @field_validator("id")
     @classmethod
@@ -204,8 +209,9 @@ class Entry(BaseModel):
 
     @property
     def label(self) -> str:
-        """How the script's `# kb:` mark names it: the id, and the actor a copy places."""
-        return f"{self.id} as {self.actor}" if self.actor else self.id
+        """How the script's `# kb:` mark names it: the id, and the actor or row a copy places."""
+        copy = self.actor or self.row
+        return f"{self.id} as {copy}" if copy else self.id
 
     def suits(self, adversary_class: ActorClass) -> bool:
         """True when this entry works with that adversary class."""
