@@ -410,3 +410,17 @@ def test_the_car_a_relative_clause_places_is_a_new_one() -> None:
 def test_what_the_writer_or_reader_is_is_the_ego() -> None:
     text = "You're the lead car at the lights when a scooter jumps the red from the right."
     assert [m.quote for m in read_cast(text).others] == ["a scooter"]
+
+
+def test_a_driver_out_of_the_vehicle_is_on_foot() -> None:
+    text = "A lorry is broken down on the shoulder and its driver is standing behind it."
+    assert [m.cls.value for m in read_cast(text).others] == ["Truck", "Pedestrian"]
+    text = "A street sweeper worker stands by the cones; the van driver waves us on."
+    assert "Pedestrian" in [m.cls.value for m in read_cast(text).others]
+
+
+def test_pick_up_as_a_verb_and_a_wheeled_thing_are_read_as_meant() -> None:
+    text = "A lorry ahead of the ego has stopped so that a man can pick up a box."
+    assert [m.cls.value for m in read_cast(text).others] == ["Truck", "Pedestrian", "Box"]
+    text = "The AV clipped a wheeled recycling bin left out in its lane."
+    assert [m.cls.value for m in read_cast(text).others] == ["Trash"]

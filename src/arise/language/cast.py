@@ -73,6 +73,23 @@ _GROUP = re.compile(
 _PLURAL = re.compile(r"(?:s|ren|men|ple|ies)$", re.I)
 # "the other car", "the other driver": the road user named before that is not the ego.
 _THE_OTHER = re.compile(r"\bthe other\s+$", re.I)
+# "pick up" as a verb: what is picked up follows.
+_PICK_UP = re.compile(r"^pick[- ]up$", re.I)
+_PICKED = re.compile(
+    r"^\s+(?:the|a|an|any|some|anything|something|it|them|him|her|his|their|my|your|"
+    r"passengers?|speed|pace|debris|litter)\b",
+    re.I,
+)
+# A driver out of the vehicle: "its driver is standing well up the verge", "the driver
+# was walking round it".
+_ON_FOOT = re.compile(
+    r"^\s+(?:(?:is|was|were|had|has|then|now)\s+)?(?:\w+\s+)?"
+    r"(?:standing|stood|stands|walking|walked|walks|pacing|on\s+foot|"
+    r"got\s+out|gets\s+out|getting\s+out|stepped\s+out|steps\s+out|climbed\s+out)\b"
+    # a driver who waves from the cab or stands on the brakes stays in it
+    r"(?!\s+on\s+(?:the|his|her|their)\s+(?:brakes?|pedal|gas|throttle))",
+    re.I,
+)
 # The person a vehicle belongs to ("car of other person"): between the two words.
 _OWNER = re.compile(r"^\s+of\s+(?:the\s+|a\s+|an\s+|one\s+)?(?:other\s+|another\s+)?$", re.I)
 # A driver, rider or operator of something already named is that thing.
@@ -492,7 +509,11 @@ def read_cast(text: str) -> Cast:
             and _noun_follows(text, end, words=4)
         ):
             continue  # "the claimant's 2018 Hollis pickup": the pickup is the party's
-        if _DRIVER.match(word) and (_EGO_DRIVER.search(before) or _DRIVER_OF.match(after)):
+        if kind == "noun" and _PICK_UP.match(word) and _PICKED.match(after):
+            continue  # "stop to pick up anything that has fallen": a verb, no pickup
+        if kind == "noun" and _DRIVER.match(word) and _ON_FOOT.match(after):
+            cls = ActorClass.PEDESTRIAN  # "its driver is standing on the verge": on foot
+        elif _DRIVER.match(word) and (_EGO_DRIVER.search(before) or _DRIVER_OF.match(after)):
             skipped.append(word)
             taken.append((start, end))
             continue
@@ -647,6 +668,8 @@ def _carried(before: str) -> bool:
     boxes", "pushing a pram")."""
     return any(
         re.fullmatch(r"(?:\s+[\w'-]+){0,2}\s+", before[found.end() :])
+        # "a wheeled trash can": a word of carrying after an article describes the thing
+        and not re.search(r"\b(?:a|an|the|its|one)\s+$", before[: found.start()], re.I)
         for found in class_pattern("carrying").finditer(before)
     )
 
