@@ -424,3 +424,12 @@ def test_pick_up_as_a_verb_and_a_wheeled_thing_are_read_as_meant() -> None:
     assert [m.cls.value for m in read_cast(text).others] == ["Truck", "Pedestrian", "Box"]
     text = "The AV clipped a wheeled recycling bin left out in its lane."
     assert [m.cls.value for m in read_cast(text).others] == ["Trash"]
+
+
+def test_the_turning_vehicle_of_a_typology_line_is_the_ego() -> None:
+    text = "At dusk the turning vehicle, going left at the lights, meets a van from the opposite direction."
+    cast = read_cast(text)
+    assert [m.quote for m in cast.others] == ["a van"]
+    # with another name for the ego, "the turning vehicle" is someone else
+    text = "The AV went straight on and the turning vehicle cut across its path."
+    assert [m.quote for m in read_cast(text).others] == ["the turning vehicle"]

@@ -140,7 +140,9 @@ _NHTSA_EGO_OWNS = re.compile(r"\bthe vehicle['\u2019]s\b", re.I)
 # others are named by their kind ("a pickup", "an oncoming vehicle"). Not "the vehicle
 # ahead" or "the vehicle that ran the red", which place or pick out another one.
 _THE_VEHICLE = re.compile(
-    r"\bthe vehicle(?:['\u2019]s)?\b(?!\s+(?:ahead|in front|behind|beside|alongside|"
+    # "the turning vehicle": the typology's word for the one the scenario is about
+    r"\bthe (?:(?:left-|right-)?turning |lane-changing |subject )?vehicle(?:['\u2019]s)?\b"
+    r"(?!\s+(?:ahead|in front|behind|beside|alongside|"
     r"next|opposite|that|which|who|to (?:the|its|his|her)|on (?:the|its)|in (?:the|its)))",
     re.I,
 )
