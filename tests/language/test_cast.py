@@ -5,7 +5,9 @@ from __future__ import annotations
 
 import pytest
 
+from arise.language.actors import read_actors
 from arise.language.cast import read_cast
+from arise.language.readers import read_description
 from arise.language.reading import parse
 
 
@@ -433,3 +435,22 @@ def test_the_turning_vehicle_of_a_typology_line_is_the_ego() -> None:
     # with another name for the ego, "the turning vehicle" is someone else
     text = "The AV went straight on and the turning vehicle cut across its path."
     assert [m.quote for m in read_cast(text).others] == ["the turning vehicle"]
+
+
+def test_the_one_who_runs_out_from_the_front_of_a_bus_is_the_adversary() -> None:
+    text = (
+        "A bus stood at the stop with its doors open. As the ego passed, a girl ran out "
+        "from the front of the bus."
+    )
+    reading = read_description(text)
+    assert reading.adversary is not None and reading.adversary.quote == "a girl"
+    roles = [a.role.value for a in read_actors(reading) if a.scenic_class.value == "Bus"]
+    assert roles == ["occluder"]
+
+
+def test_a_participle_after_another_named_is_the_subjects() -> None:
+    text = (
+        "A lorry stood in the far lane. A boy ran out from behind the lorry, heading from "
+        "your right into your lane."
+    )
+    assert read_description(text).facts["spawn_position"].value == "crossing_road_from_right"

@@ -15,12 +15,12 @@ from arise.language.cast import Cast, Mention
 from arise.language.facts import start_detail
 from arise.language.readers import (
     Reading,
-    cue_before,
     exit_street_walker,
     lane_end,
     moves_in,
     read_start,
     read_stationary,
+    someone_comes_out_from,
     words_of,
 )
 from arise.language.rules import Fact, rulebook
@@ -110,9 +110,7 @@ def read_actor(cast: Cast, mention: Mention) -> CastActor:
         cls=mention.cls,
         prop=mention.is_prop,
         cues=cues,
-        hides_behind=any(
-            cue_before(Fact.HIDES_BEHIND, text, a, spaced=False) for a, _ in stretches
-        ),
+        hides_behind=someone_comes_out_from(cast, mention, stretches),
         start=start,
         stationary=stationary,
     )

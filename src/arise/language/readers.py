@@ -111,6 +111,11 @@ def _actor_starts(cast: Cast) -> tuple[int, ...]:
 
 
 #: "... and crossed", "... then ran": a verb joined to the clause's own subject.
+_PARTICIPLE_OPENS = re.compile(
+    r"\s*(?:heading|walking|running|making|going|coming|moving|cutting|crossing|riding|"
+    r"driving|travelling|traveling|aiming|darting|dashing|stepping)\b",
+    re.I,
+)
 _CARRIES_ON = re.compile(r"\b(?:and|then|and then|before|but)\s+(?=[a-z])", re.I)
 
 
@@ -156,7 +161,12 @@ def words_of(cast: Cast, mention: Mention) -> list[tuple[int, int]]:
         if (
             clause.subject is mention
             and not clause.explicit
-            and _PRONOUN_OPENS.match(text, clause.start)
+            and (
+                _PRONOUN_OPENS.match(text, clause.start)
+                # "darts out from the front of the bus, heading from your left": the
+                # walker's words, though the bus was named last
+                or _PARTICIPLE_OPENS.match(text, clause.start)
+            )
         ):
             stretches.append((clause.start, clause.end))
     # "a pedestrian emerged between the parked cars and crossed southbound": the words after
@@ -1698,6 +1708,13 @@ def adversary_type_of(cls: ActorClass) -> AdversaryType | None:
     return next((kind for kind in AdversaryType if kind.scenic_class is refined), None)
 
 
+def someone_comes_out_from(cast: Cast, mention: Mention, stretches: list[tuple[int, int]]) -> bool:
+    """Whether the words right before `mention` (its words' start, or one of its names, as
+    in "out from the front of the bus") put someone behind it or coming out from it."""
+    starts = {a for a, _ in stretches} | {span.start for span in mention.spans}
+    return any(cue_before(Fact.HIDES_BEHIND, cast.text, a, spaced=False) for a in starts)
+
+
 def choose_adversary(cast: Cast, quote: str | None) -> Mention | None:
     """The named road user the model points at (by a quote that is in the text); else, of
     the road users not described as parked or hiding something, nor one someone comes out
@@ -1710,7 +1727,7 @@ def choose_adversary(cast: Cast, quote: str | None) -> Mention | None:
         stretches = words_of(cast, mention)
         if any(rulebook().first(Fact.BACKGROUND, cast.text, a, b) for a, b in stretches):
             continue
-        if any(cue_before(Fact.HIDES_BEHIND, cast.text, a, spaced=False) for a, _ in stretches):
+        if someone_comes_out_from(cast, mention, stretches):
             continue
         if any(
             hit.value == "occluder"
