@@ -454,3 +454,24 @@ def test_a_participle_after_another_named_is_the_subjects() -> None:
         "your right into your lane."
     )
     assert read_description(text).facts["spawn_position"].value == "crossing_road_from_right"
+
+
+@pytest.mark.parametrize(
+    ("text", "named"),
+    [
+        # a report's number for the thing just named: that thing, of its noun's class
+        ("V1 was northbound. A tour coach (V2) was stopped at the kerb.", [("Bus", 2)]),
+        ("V1 was northbound. A tipper truck, V2, was stopped at the kerb.", [("Truck", 2)]),
+        # what a walker is, said again between commas: one walker
+        ("V1 was northbound. A pedestrian (P1), an older woman, crossed.", [("Pedestrian", 3)]),
+        # a list is not an apposition
+        (
+            "The ego passes a man, a woman, and a child.",
+            [("Pedestrian", 1), ("Pedestrian", 1), ("Pedestrian", 1)],
+        ),
+    ],
+)
+def test_a_number_or_an_apposition_names_the_thing_just_named(
+    text: str, named: list[tuple[str, int]]
+) -> None:
+    assert [(m.cls.value, len(m.spans)) for m in read_cast(text).others] == named

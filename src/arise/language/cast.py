@@ -185,6 +185,7 @@ _EGO_APPOSITION = re.compile(
     r"((?:an?\s+)?(?:19|20)\d\d\s+[^,.;()]{1,60}?(?=\s*(?:" + _NOT_A_LIST + r"|[.;]))"
     r"|an?\s+[^,.;()]{1,60}?(?=\s*" + _NOT_A_LIST + r"))"
 )
+_EGO_BRACKET = re.compile(r"\s*\(([^()]{1,60})\)")
 # A year and a capitalised name ("a 2017 Hollis Tern"), or a known make ("a white Subaru").
 _YEAR_NAME = re.compile(
     r"\b(?:19[5-9]\d|20[0-4]\d)\s+(?:[A-Z][\w-]*)(?:\s+(?:[A-Z0-9][\w-]*))?(?:\s+(?:[A-Z0-9][\w-]*))?"
@@ -395,6 +396,13 @@ def _ego_spans(text: str) -> list[Span]:
         for span in spans
         if (found := _EGO_APPOSITION.match(text, span.end)) and " and " not in found.group(1)
     ]
+    # "an automated-driving prototype (2025 Pellham Aster)": the make in brackets too
+    brackets = [found for span in spans if (found := _EGO_BRACKET.match(text, span.end))]
+    spans += [
+        Span(*found.span(1))
+        for found in brackets
+        if not any(found.start(1) <= span.start < found.end(1) for span in spans)
+    ]
     return sorted(set(spans), key=lambda s: s.start)
 
 
@@ -564,6 +572,7 @@ def read_cast(text: str) -> Cast:
         if kind.startswith(("V", "P")) and kind != "noun":
             numbered[kind] = len(found) - 1
     found = _numbered_descriptions(text, found, numbered)
+    found = _tagged_names(text, found)
     found = _generic_descriptions(text, found)
     found = _party_vehicles(text, found)
     found = _bracketed_descriptions(text, found)
@@ -802,6 +811,74 @@ def party_number(cast: Cast, mention: Mention) -> int | None:
         if numbered:
             return int(numbered.group(1))
     return None
+
+
+#: Between a thing named and the report's number for it: "a transit bus (V2)", "a box
+#: truck, V2,".
+_TAG_BETWEEN = re.compile(r"\s*(?:\(|,)\s*")
+#: Between a thing named (or its number) and what it is again: "a pedestrian (P1), an adult
+#: male, ...".
+_APPOSITION_CLOSES = re.compile(r"(?:\s+[\w'-]+){0,2}\s*[,)](?!\s*(?:and|or)\b)", re.I)
+_AGAIN_BETWEEN = re.compile(r"\)?\s*,\s*(?:(?:a|an)\s+(?:[\w'-]+\s+){0,2})?")
+
+
+def _is_tag(text: str, span: Span) -> bool:
+    return bool(
+        _NUMBERED.fullmatch(text, span.start, span.end)
+        or _NUMBERED_WALKER.fullmatch(text, span.start, span.end)
+    )
+
+
+def _tagged_names(text: str, found: list[Mention]) -> list[Mention]:
+    """ "A transit bus (V2)", "a box truck, V2,": the report's number for the thing just
+    named is that thing, of the class its noun says (a number alone says a car); and "a
+    pedestrian (P1), an adult male," is one walker, not two."""
+    for tag in list(found):
+        first = tag.spans[0]
+        if tag not in found or not _is_tag(text, first):
+            continue
+        named = next(
+            (
+                m
+                for m in found
+                if m is not tag
+                and m.spans[0].end <= first.start
+                and _TAG_BETWEEN.fullmatch(text, m.spans[0].end, first.start)
+            ),
+            None,
+        )
+        if named is not None:
+            merged = replace(named, spans=tuple(sorted({*named.spans, *tag.spans}, key=_at)))
+            found = [merged if m is named else m for m in found if m is not tag]
+    for mention in list(found):
+        if mention not in found:
+            continue
+        ends = [s.end for s in mention.spans[:2]]
+        again = next(
+            (
+                m
+                for m in found
+                if m is not mention
+                and m.cls is mention.cls
+                and any(
+                    end <= m.spans[0].start
+                    and _AGAIN_BETWEEN.fullmatch(text, end, phrase_start(text, m.spans[0].start))
+                    for end in ends
+                )
+                # closed like an apposition, not going on like a list ("a man, a woman and
+                # a child")
+                and _APPOSITION_CLOSES.match(text, m.spans[0].end)
+            ),
+            None,
+        )
+        if again is not None:
+            merged = replace(mention, spans=tuple(sorted({*mention.spans, *again.spans}, key=_at)))
+            found = [merged if m is mention else m for m in found if m is not again]
+    return found
+
+
+def _at(span: Span) -> int:
+    return span.start
 
 
 #: A description in brackets right after a road user: "POV (silver sedan)", "the other
