@@ -475,3 +475,10 @@ def test_a_number_or_an_apposition_names_the_thing_just_named(
     text: str, named: list[tuple[str, int]]
 ) -> None:
     assert [(m.cls.value, len(m.spans)) for m in read_cast(text).others] == named
+
+
+def test_ones_own_vehicle_or_driver_is_not_one_more() -> None:
+    text = "P1, a courier, was riding north. The front wheel of P1's bicycle struck the AV's door."
+    assert [(m.cls.value, m.count) for m in read_cast(text).others] == [("Bicycle", 1)]
+    text = "The AV was rear-ended by a tipper truck whose driver failed to stop."
+    assert [m.cls.value for m in read_cast(text).others] == ["Truck"]

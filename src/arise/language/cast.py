@@ -94,6 +94,8 @@ _ON_FOOT = re.compile(
 _OWNER = re.compile(r"^\s+of\s+(?:the\s+|a\s+|an\s+|one\s+)?(?:other\s+|another\s+)?$", re.I)
 # A driver, rider or operator of something already named is that thing.
 _DRIVER = re.compile(r"^(?:driver|drivers|motorist|motorists)$", re.I)
+# "a following SUV whose driver failed to stop": the driver of the one just named.
+_WHOSE = re.compile(r"\bwhose\s+$", re.I)
 _DRIVER_OF = re.compile(r"^\s+(?:of|in|driving)\s+(?:a|an|the)\b", re.I)
 # The ego's own driver ("the AV's safety driver", "its driver", "my driver") is no road user.
 _EGO_DRIVER = re.compile(
@@ -523,7 +525,9 @@ def read_cast(text: str) -> Cast:
             continue  # "stop to pick up anything that has fallen": a verb, no pickup
         if kind == "noun" and _DRIVER.match(word) and _ON_FOOT.match(after):
             cls = ActorClass.PEDESTRIAN  # "its driver is standing on the verge": on foot
-        elif _DRIVER.match(word) and (_EGO_DRIVER.search(before) or _DRIVER_OF.match(after)):
+        elif _DRIVER.match(word) and (
+            _EGO_DRIVER.search(before) or _DRIVER_OF.match(after) or _WHOSE.search(before)
+        ):
             skipped.append(word)
             taken.append((start, end))
             continue
@@ -546,7 +550,9 @@ def read_cast(text: str) -> Cast:
                 found[index] = pedalled.with_span(span)
                 taken.append((start, end))
                 continue
-        earlier = _same_thing(found, cls, before, word, ego_number, after)
+        earlier = _same_thing(found, cls, before, word, ego_number, after) or _its_own(
+            text, found, cls, start
+        )
         if earlier is None and kind == "noun" and _bare_repeat(text, start, word, after, cls):
             # terse notes drop articles: "bus in bay ... ped emerges ahead of bus nose"
             earlier = next((m for m in reversed(found) if m.cls == cls), None)
@@ -554,6 +560,8 @@ def read_cast(text: str) -> Cast:
         if earlier is not None:
             index = found.index(earlier)
             found[index] = earlier.with_span(span)
+            if earlier.cls.is_walker and cls in _RIDDEN:
+                found[index] = replace(found[index], cls=cls)  # "P2's bicycle": P2 rides it
             if _is_party(earlier) and cls.is_vehicle and earlier.cls is not cls:
                 found[index] = replace(found[index], cls=cls)  # "their van": a van
             continue
@@ -945,6 +953,21 @@ def _heading_mentions(text: str, found: list[Mention]) -> list[Mention]:
         merged = later.with_span(named.spans[0])
         found = [merged if m is later else m for m in found if m is not named]
     return found
+
+
+def _its_own(text: str, found: list[Mention], cls: ActorClass, start: int) -> Mention | None:
+    """ "P2's bicycle" of a cyclist P2, "the van's bodywork": a thing of one's own class
+    named by its owner's possessive is the owner."""
+    for mention in reversed(found):
+        for span in mention.spans:
+            if (
+                (mention.cls is cls or (mention.cls.is_walker and cls in _RIDDEN))
+                and span.end <= start
+                and text[span.start : span.end].lower().endswith(("'s", "\u2019s"))
+                and re.fullmatch(r"\s+(?:[\w-]+\s+){0,2}", text[span.end : start])
+            ):
+                return mention
+    return None
 
 
 def _same_thing(
