@@ -482,3 +482,16 @@ def test_ones_own_vehicle_or_driver_is_not_one_more() -> None:
     assert [(m.cls.value, m.count) for m in read_cast(text).others] == [("Bicycle", 1)]
     text = "The AV was rear-ended by a tipper truck whose driver failed to stop."
     assert [m.cls.value for m in read_cast(text).others] == ["Truck"]
+
+
+@pytest.mark.parametrize(
+    ("text", "count"),
+    [
+        ("Half a dozen cones stand in the ego's lane.", 6),
+        ("2-lane rd, 3x cones in ego lane ahead.", 3),
+        ("12 cones line the ego's lane ahead.", 12),
+        ("At 25 mph a cyclist pulls out in front of the ego.", 1),
+    ],
+)
+def test_counts_said_many_ways(text: str, count: int) -> None:
+    assert read_cast(text).others[0].count == count

@@ -48,7 +48,8 @@ _COUNT_WORDS = {
 # A count a few modifiers before the noun ("half a dozen orange cones", "10 cones"); not a
 # lane's number ("#3 lane as V2"), not a quantity, and not across a joining word.
 _COUNT = re.compile(
-    r"(?<!#)\b(two|three|four|five|six|seven|eight|nine|ten|half a dozen|a dozen|dozen|\d{1,2}|"
+    r"(?<!#)\b(two|three|four|five|six|seven|eight|nine|ten|half a dozen|a dozen|dozen|"
+    r"\d{1,2}\s?x|\d{1,2}|"
     r"pair of|couple of)\s+"
     # a number of units is a quantity, not a count ("at 25 mph a cyclist")
     r"(?!(?:mph|km|kph|kmh|km/h|m|ft|feet|foot|metres|meters|miles|mi|yards|yd|s|sec|secs|"
@@ -541,7 +542,8 @@ def read_cast(text: str) -> Cast:
         count = 1
         if count_match:
             token = count_match.group(1).lower()
-            count = int(token) if token.isdigit() else _COUNT_WORDS.get(token, 1)
+            digits = token.rstrip("x ")  # "3x cones"
+            count = int(digits) if digits.isdigit() else _COUNT_WORDS.get(token, 1)
         span = Span(start, end)
         if kind == "noun" and _RIDER.match(word):
             cls, pedalled = _rider_class(found, cls, after)
