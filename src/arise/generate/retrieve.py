@@ -738,8 +738,8 @@ def _add_extras(
         ]
         ranked = _ranked(retriever, participant, Component.MISC, same_kind)
         picked = _prefer(ranked, _misc_fit(actor))[:1]
-        if not (picked and len(_created(picked[0])) == actor.count):
-            # a prop no entry places in its number (or at all): a row of its own
+        if not picked or (actor.count_stated and len(_created(picked[0])) != actor.count):
+            # a prop no entry places (or not in the number the text says): a row of its own
             picked = _prop_row(actor, index, rows) or picked
         if not picked:
             result.notes.append(f"misc: no entry places {participant!r}; left out")
