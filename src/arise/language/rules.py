@@ -161,6 +161,17 @@ class Hit:
     order: int  # the rule's place among the rules of its fact
 
 
+#: Facts of a move that a negation right before cancels.
+NEGATABLE = frozenset(
+    {Fact.TURN, Fact.LANE_SIDE, Fact.EGO_PLAN, Fact.EGO_OVERTAKES, Fact.THROUGH_ONCOMING}
+)
+_NEGATED = re.compile(
+    r"\b(?:not|never|without|can't|cannot|couldn't|don't|didn't|won't|mustn't|shouldn't|"
+    r"unable\s+to|no\s+room\s+to)\s+(?:[\w'-]+\s+){0,2}$",
+    re.I,
+)
+
+
 @dataclass(frozen=True)
 class CompiledRule:
     rule: Rule
@@ -169,15 +180,20 @@ class CompiledRule:
     order: int
 
     def hits(self, text: str, start: int = 0, end: int | None = None) -> Iterator[Hit]:
-        """Matches that lie inside text[start:end] and inside no `unless` match."""
+        """Matches that lie inside text[start:end] and inside no `unless` match; a move
+        said not to happen ("without crossing the centre line", "you can't pull out") is
+        none."""
         stop = len(text) if end is None else end
         seen = ego_number_view(text)  # "Vehicle 2's right rear" of an ego numbered 2
         vetoes = [m.span() for p in self.unless for m in p.finditer(seen)]
+        negatable = self.rule.fact in NEGATABLE
         for pattern in self.when:
             for match in pattern.finditer(seen, start):
                 if match.end() > stop:
                     break
                 if any(a <= match.start() and match.end() <= b for a, b in vetoes):
+                    continue
+                if negatable and _NEGATED.search(seen, max(0, match.start() - 40), match.start()):
                     continue
                 slots = {k: slot_word(v) for k, v in match.groupdict().items() if v}
                 yield Hit(
