@@ -51,3 +51,12 @@ def test_a_title_ends_no_sentence_so_the_egos_heading_after_a_name_is_read() -> 
     )
     assert sentence_end(text, 0) == len(text) - 1
     assert read_description(text).facts["spawn_position"].value == "oncoming"
+
+
+def test_a_heading_at_the_end_of_a_sentence_is_not_the_next_ones() -> None:
+    text = (
+        "Unit 1 was westbound and stopped at the four-way stop. A bus stood on the opposite "
+        "approach, facing east. Unit 2, a sedan on the cross street, struck Unit 1's right "
+        "rear door."
+    )
+    assert read_description(text).facts["spawn_position"].value == "crossing_road_from_right"

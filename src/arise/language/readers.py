@@ -1181,7 +1181,8 @@ def _ego_bearing(cast: Cast) -> int | None:
 def _own_heading(cast: Cast, start: int, end: int) -> Hit | None:
     """An actor's compass heading in its words, then with the few characters before ("an
     eastbound sedan")."""
-    return _heading(cast.text, start, end) or _heading(cast.text, max(0, start - 15), end)
+    back = max(0, start - 15, sentence_start(cast.text, start))  # not the sentence before
+    return _heading(cast.text, start, end) or _heading(cast.text, back, end)
 
 
 def read_compass(cast: Cast, mention: Mention) -> GroundedFact | None:
@@ -1207,7 +1208,7 @@ def read_compass(cast: Cast, mention: Mention) -> GroundedFact | None:
             return GroundedFact(
                 name="spawn_position", value=side.value, source=FactSource.TEXT, quote=curb.quote
             )
-        words = cast.text[max(0, start - 15) : end]
+        words = cast.text[max(0, start - 15, sentence_start(cast.text, start)) : end]
         bound = _own_heading(cast, start, end)
         heading = (
             (_COMPASS[bound.value], bound.quote) if bound else _side_road_bearing(cast.text, words)
