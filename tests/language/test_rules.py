@@ -41,3 +41,23 @@ def test_a_slot_value_is_checked_for_every_word_of_its_class() -> None:
 def test_a_value_the_fact_cannot_take_is_a_rule_error(fact: str, value: str, when: str) -> None:
     with pytest.raises(RuleError):
         _check_value(_rule(fact, value, when), "test.yaml")
+
+
+def test_no_pattern_is_cut_short_by_a_yaml_comment() -> None:
+    """`- within # feet` is the pattern "within" to YAML: the number slot `#` must be quoted.
+    A comment after a pattern is set off by two spaces."""
+    from pathlib import Path
+
+    import arise.language
+
+    folder = Path(arise.language.__file__).parent / "data" / "rules"
+    cut = [
+        f"{path.name}:{number}"
+        for path in sorted(folder.glob("*.yaml"))
+        for number, line in enumerate(path.read_text(encoding="utf-8").splitlines(), start=1)
+        if line.lstrip().startswith("- ")
+        and not line.lstrip()[2:].startswith(("'", '"'))
+        and " # " in line
+        and "  # " not in line
+    ]
+    assert not cut, cut
