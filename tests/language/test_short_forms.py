@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import pytest
+
 from arise.language.cast import read_cast, sentence_end
 from arise.language.readers import read_description
 
@@ -60,3 +62,16 @@ def test_a_heading_at_the_end_of_a_sentence_is_not_the_next_ones() -> None:
         "rear door."
     )
     assert read_description(text).facts["spawn_position"].value == "crossing_road_from_right"
+
+
+@pytest.mark.parametrize(
+    ("text", "turn"),
+    [
+        ("V1 was eastbound on Hale Street and turned onto northbound Pike Avenue.", "turn_left"),
+        ("Unit 1 was southbound and entered the junction to go west on Mill Road.", "turn_right"),
+        ("V1 was northbound and kept northbound through the junction.", None),
+    ],
+)
+def test_a_turn_told_by_compass_headings_alone(text: str, turn: str | None) -> None:
+    found = read_description(text + " A van came the other way.").facts.get("ego_maneuver")
+    assert (found.value if found else None) in ((turn,) if turn else (None, "go_straight"))

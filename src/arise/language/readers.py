@@ -1322,6 +1322,38 @@ def _numbered_lane_change(cast: Cast, words: str) -> tuple[str, str] | None:
     return ("right" if right else "left", f"{ours.quote} ... {words}")
 
 
+#: Words right before a heading that say the ego takes it by turning: "turned onto
+#: northbound Elm Avenue", "to go south on Brannock", "turning west into Oak Street".
+_TURNING_ONTO = re.compile(
+    r"\b(?:turn\w*|onto|to\s+go|to\s+head|to\s+travel|swung|swing\w*|bore|bear\w*)"
+    r"(?:\s+(?:on|onto|into|to|the|a))*\s+$",
+    re.I,
+)
+
+
+def _compass_turn(cast: Cast) -> tuple[EgoManeuver, str] | None:
+    """A turn told by compass headings alone: the ego's bearing, then a heading a quarter
+    round that its words turn onto (to the right when clockwise)."""
+    bearing = _ego_bearing(cast)
+    if bearing is None:
+        return None
+    for found in _BEARING_WORD.finditer(cast.text):
+        if not _TURNING_ONTO.search(cast.text, max(0, found.start() - 30), found.start()):
+            continue
+        if subject_of(cast, found.start()) != "ego":
+            continue
+        turn = {90: EgoManeuver.TURN_RIGHT, 270: EgoManeuver.TURN_LEFT}.get(
+            (_COMPASS[found.group(1).lower()] - bearing) % 360
+        )
+        if turn is not None:
+            return turn, found.group(0)
+    return None
+
+
+#: A compass bearing taken ("northbound", "north", "westward").
+_BEARING_WORD = re.compile(r"\b(north|south|east|west)(?:bound|ward|wards)?\b", re.I)
+
+
 def read_maneuvers(reading: Reading) -> None:
     """The ego's maneuver and the adversary's turn, each from verbs about that actor."""
     cast = reading.cast
@@ -1359,6 +1391,8 @@ def read_maneuvers(reading: Reading) -> None:
             and kind != "change_lane"
         ):
             adversary = (AdversaryManeuver(kind), words)
+    if ego is None:
+        ego = _compass_turn(cast)  # "was eastbound ... turned onto northbound Elm Avenue"
     if ego is not None:
         reading.facts["ego_maneuver"] = GroundedFact(
             name="ego_maneuver", value=ego[0].value, source=FactSource.TEXT, quote=ego[1]
