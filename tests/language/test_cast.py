@@ -495,3 +495,12 @@ def test_ones_own_vehicle_or_driver_is_not_one_more() -> None:
 )
 def test_counts_said_many_ways(text: str, count: int) -> None:
     assert read_cast(text).others[0].count == count
+
+
+def test_of_those_that_meet_no_one_the_one_moving_into_the_road_is_the_adversary() -> None:
+    text = (
+        "A moped is tucked in close behind you, so braking hard is risky. A girl darts into "
+        "the road from between two parked vans on the left."
+    )
+    reading = read_description(text)
+    assert reading.adversary is not None and reading.adversary.quote == "A girl"

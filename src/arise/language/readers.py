@@ -1747,7 +1747,32 @@ def someone_comes_out_from(cast: Cast, mention: Mention, stretches: list[tuple[i
     """Whether the words right before `mention` (its words' start, or one of its names, as
     in "out from the front of the bus") put someone behind it or coming out from it."""
     starts = {a for a, _ in stretches} | {span.start for span in mention.spans}
-    return any(cue_before(Fact.HIDES_BEHIND, cast.text, a, spaced=False) for a in starts)
+    if any(cue_before(Fact.HIDES_BEHIND, cast.text, a, spaced=False) for a in starts):
+        return True
+    # "darts out round the bus's front", "emerged past V2's front bumper"
+    return any(
+        _ROUND_ITS.search(cast.text, max(0, span.start - 25), span.start)
+        and _ITS_FRONT.match(cast.text, span.end)
+        for span in mention.spans
+        if cast.text[span.start : span.end].lower().endswith(("'s", "\u2019s"))
+    )
+
+
+_ROUND_ITS = re.compile(
+    r"\b(?:round|around|past|from|out\s+of|in\s+front\s+of)\s+(?:the\s+)?$", re.I
+)
+_ITS_FRONT = re.compile(r"\s+(?:front|nose|bonnet|hood)\b", re.I)
+
+
+#: Moving into the road or the ego's path: "darts into the road", "steps out", "pulls out
+#: across", "cuts in".
+_INTO_THE_ROAD = re.compile(
+    r"\b(?:dart\w*|dash\w*|step\w*|ran|run\w*|walk\w*|pull\w*|cut\w*|swerv\w*|emerg\w*|"
+    r"shot|shoot\w*|lurch\w*|veer\w*)\b(?:\s+(?!(?:is|was|are|be)\b)[\w'-]+){0,2}?"
+    r"\s+(?:into|onto|out|across|in)\b"
+    r"|\b(?:enter\w*|merg\w*|ran\s+the|runs\s+the|running\s+the|jump\w*\s+the)\b",
+    re.I,
+)
 
 
 def choose_adversary(cast: Cast, quote: str | None) -> Mention | None:
@@ -1771,7 +1796,10 @@ def choose_adversary(cast: Cast, quote: str | None) -> Mention | None:
         ):
             occluders.append(mention)  # "a lorry waiting opposite blocked her view of ..."
             continue
-        playing.append((_meeting_rank(cast, mention, stretches), mention))
+        rank = _meeting_rank(cast, mention, stretches)
+        # of those that meet no one, one that moves into the road comes first
+        enters = any(_INTO_THE_ROAD.search(cast.text, a, b) for a, b in stretches)
+        playing.append((2 * rank + (rank == 2 and not enters), mention))
     if quote:
         span = find_quote(cast.text, quote)
         if span is not None:
