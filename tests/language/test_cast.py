@@ -504,3 +504,14 @@ def test_of_those_that_meet_no_one_the_one_moving_into_the_road_is_the_adversary
     )
     reading = read_description(text)
     assert reading.adversary is not None and reading.adversary.quote == "A girl"
+
+
+def test_behind_him_at_a_sentences_start_places_by_the_one_named_before() -> None:
+    text = (
+        "At the crossroad I wait to turn left. Against me is coming one taxi, so I let him "
+        "go. Behind him a tipper truck is turning to his right side."
+    )
+    actors = read_actors(read_description(text))
+    assert [(a.scenic_class.value, a.start and a.start.value) for a in actors] == [
+        ("Truck", "oncoming")
+    ]

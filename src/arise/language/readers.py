@@ -587,7 +587,8 @@ def _fronted_by_another(cast: Cast, mention: Mention) -> list[tuple[int, int]]:
             hit = rulebook().first(Fact.BY_ANOTHER, text, start, opened)
             if (
                 hit is not None
-                and hit.value == "emerges"
+                # "out of the gap between the vans comes a boy", "Behind him a truck"
+                and hit.value in ("emerges", "behind", "ahead")
                 and hit.start == start
                 and len(text[start:opened].split()) <= _FRONTED_WORDS
             ):
