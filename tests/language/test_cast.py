@@ -515,3 +515,10 @@ def test_behind_him_at_a_sentences_start_places_by_the_one_named_before() -> Non
     assert [(a.scenic_class.value, a.start and a.start.value) for a in actors] == [
         ("Truck", "oncoming")
     ]
+
+
+def test_the_rest_of_a_negated_list_and_a_measure_are_no_actors() -> None:
+    text = "A drum stood in my lane; there were no cones, signs or lorries about."
+    assert [m.cls.value for m in read_cast(text).others] == ["Barrel"]
+    text = "A builder's skip stood in the road, poking about a car's width into my lane."
+    assert [m.cls.value for m in read_cast(text).others] == ["Container"]

@@ -62,7 +62,10 @@ _DEFINITE = re.compile(r"\b(?:the|that|this|its|their|his|her)\s+(?:[\w'-]+[- ])
 # "both vehicles", "no other vehicle": a summary or a negation, not one more thing.
 _NOT_NEW_THING = re.compile(
     r"\b(?:both|all|neither|either|no|any|none of the|no one|nobody|each|(?:empty|free|devoid) of)\s+"
-    r"(?:other\s+)?(?:\w+\s+)?$",
+    r"(?:other\s+)?(?:\w+\s+)?$"
+    # ... and the rest of a list it opens: "no lorry or van", "no other vehicles or
+    # pedestrians", "no cones, signs or lights"
+    r"|\b(?:no|neither|without|nor)\s+(?:[\w'-]+,?\s+){1,5}(?:or|nor)\s+(?:[\w'-]+\s+)?$",
     re.I,
 )
 # A group with no number: "several cyclists", "a row of parked cars".
@@ -155,7 +158,7 @@ _A_VEHICLE = re.compile(r"\b(?:a|an|another|one)\s+(?:[\w-]+\s+){0,3}?vehicle\b"
 # The writer's own vehicle by any vehicle noun ("my hatchback", "our tipper lorry"), and the
 # one under test by what it is ("the automated car", "Automated shuttle van", "the test car").
 _OWN_OR_UNDER_TEST = re.compile(
-    r"(?:\b(?:my|our|your)|(?:\b(?:the|an?)\s+)?\b(?:automated|autonomous|self-driving|"
+    r"(?:\b(?:my|our|your)|\b(?:her|his|their|the)\s+insured|(?:\b(?:the|an?)\s+)?\b(?:automated|autonomous|self-driving|"
     r"driverless|test))\s+(?:(?!(?:a|an|the|one|some|lane|road|street|way|side)\b)[\w'-]+\s+){0,2}?$",
     re.I,
 )
