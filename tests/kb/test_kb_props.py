@@ -100,3 +100,22 @@ def test_props_stand_in_their_number_where_the_text_puts_them(
             if v.fact in {FactKind.ACTOR, FactKind.START} and v.match is False
         ]
         assert not wrong, (labels, seed, wrong)
+
+
+def test_a_copy_name_from_a_data_file_is_one_plain_word(tmp_path) -> None:
+    """A row or actor name goes into the script's `# kb:` mark: a crafted one is refused."""
+    from arise.kb.loader import KBError, load_file
+    from arise.kb.schema import Component
+
+    (tmp_path / "misc.yaml").write_text(
+        "entries:\n"
+        "  - id: misc.crafted\n"
+        "    descriptions: [A crafted entry.]\n"
+        "    snippet: 'crafted = new Cone at egoStart'\n"
+        "    defines: [crafted]\n"
+        "    needs: [egoStart]\n"
+        '    row: "P1\\nimport os"\n',
+        encoding="utf-8",
+    )
+    with pytest.raises(KBError, match="plain name"):
+        load_file(tmp_path / "misc.yaml", Component.MISC)

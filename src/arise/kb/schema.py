@@ -166,6 +166,14 @@ class Entry(BaseModel):
                 )
         return value
 
+    @field_validator("actor", "row")
+    @classmethod
+    def _copy_name(cls, value: str | None) -> str | None:
+        # it is written into the script's `# kb:` mark: one plain word, never more
+        if value is not None and not re.fullmatch(r"[A-Za-z][A-Za-z0-9]{0,15}", value):
+            raise ValueError(f"{value!r} is not a plain name like 'actor2' or 'P2'")
+        return value
+
     @field_validator("actor_class")
     @classmethod
     def _road_user(cls, value: ActorClass | None) -> ActorClass | None:
