@@ -863,6 +863,7 @@ def _tagged_names(text: str, found: list[Mention]) -> list[Mention]:
         if named is not None:
             merged = replace(named, spans=tuple(sorted({*named.spans, *tag.spans}, key=_at)))
             found = [merged if m is named else m for m in found if m is not tag]
+    opens = {id(m): phrase_start(text, m.spans[0].start) for m in found}
     for mention in list(found):
         if mention not in found:
             continue
@@ -874,8 +875,8 @@ def _tagged_names(text: str, found: list[Mention]) -> list[Mention]:
                 if m is not mention
                 and m.cls is mention.cls
                 and any(
-                    end <= m.spans[0].start
-                    and _AGAIN_BETWEEN.fullmatch(text, end, phrase_start(text, m.spans[0].start))
+                    end <= opens[id(m)] <= end + 40
+                    and _AGAIN_BETWEEN.fullmatch(text, end, opens[id(m)])
                     for end in ends
                 )
                 # closed like an apposition, not going on like a list ("a man, a woman and
@@ -886,6 +887,7 @@ def _tagged_names(text: str, found: list[Mention]) -> list[Mention]:
         )
         if again is not None:
             merged = replace(mention, spans=tuple(sorted({*mention.spans, *again.spans}, key=_at)))
+            opens[id(merged)] = opens[id(mention)]
             found = [merged if m is mention else m for m in found if m is not again]
     return found
 

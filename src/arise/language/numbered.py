@@ -9,6 +9,7 @@ the same length, so every offset and quote still points at the description itsel
 from __future__ import annotations
 
 import re
+from bisect import bisect_right
 from functools import cache, lru_cache
 
 from arise.language.lexicon import class_pattern, not_after_abbreviation
@@ -32,8 +33,15 @@ def _sentence_stop() -> re.Pattern[str]:
 
 def sentence_start(text: str, position: int) -> int:
     """Where the sentence holding `position` starts."""
-    ends = [m.end() for m in _sentence_stop().finditer(text, 0, position)]
-    return ends[-1] if ends else 0
+    stops = _stops(text)
+    at = bisect_right(stops, position)
+    return stops[at - 1] if at else 0
+
+
+@lru_cache(maxsize=16)  # keyed by the text: bounded, as a server reads many
+def _stops(text: str) -> tuple[int, ...]:
+    """Where each sentence of `text` but the first starts, found once per text."""
+    return tuple(m.end() for m in _sentence_stop().finditer(text))
 
 
 def sentence_spans(text: str) -> list[tuple[int, int]]:
@@ -58,7 +66,10 @@ def numbered_ego(text: str) -> str | None:
     if not numbers:
         return None
     for match in NUMBERED.finditer(text):
-        end = min(sentence_end(text, match.end()), match.end() + 80)
+        # its sentence, at most 80 characters on (a search bounded there: a text of
+        # hundreds of numbered names must not cost a pass to its end for each)
+        stop = _sentence_stop().search(text, match.end(), match.end() + 80)
+        end = stop.start() if stop else min(len(text), match.end() + 80)
         following = NUMBERED.search(text, match.end(), end)
         window = text[match.end() : following.start() if following else end]
         if any(

@@ -1149,12 +1149,18 @@ def _side_road_bearing(text: str, words: str) -> tuple[int, str] | None:
     return (_COMPASS[told.group(1).lower()] + 180) % 360, told.group(0)
 
 
+#: The ego's first names looked at for its bearing: a report gives it early, and a text
+#: that names the ego hundreds of times must not cost a pass per name.
+_BEARING_NAMES = 12
+
+
+@lru_cache(maxsize=16)
 def _ego_bearing(cast: Cast) -> int | None:
     """The ego's compass bearing before any turn, from its own words ("the AV was
     northbound"); None when they give none."""
     # up to the other's phrase: "the AV was hit by an eastbound sedan" is the sedan's bearing
     others = sorted(phrase_start(cast.text, s.start) for m in cast.others for s in m.spans)
-    for span in cast.ego:
+    for span in cast.ego[:_BEARING_NAMES]:
         # In the ego's own words: up to the next actor named or the end of the sentence
         # ("V1 entered the intersection of A Street and 9th Avenue eastbound").
         until = min([s for s in others if s > span.end] + [sentence_end(cast.text, span.end)])
